@@ -1,0 +1,5 @@
+# catkin_python_setup(): exposes the Python package offshore_gnc (test harness, report tools).
+from setuptools import setup
+from catkin_pkg.python_setup import generate_distutils_setup
+
+setup(**generate_distutils_setup(packages=["offshore_gnc"], package_dir={"": "python"}))

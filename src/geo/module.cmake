@@ -1,0 +1,1 @@
+offshore_gnc_tool(geo_bench SOURCES src/geo/geo_bench.cpp)
