@@ -1,0 +1,17 @@
+#pragma once
+// Vehicle state shared by the models, the sensor simulators, guidance and control (all ROS-free).
+// NED world frame (x north, y east, z down) and body frame (x forward, y starboard, z down), SI units,
+// angles in radians (yaw clockwise from north, wrapped to (-pi, pi]).
+#include <Eigen/Core>
+
+namespace offshore_gnc {
+
+struct VehicleState {
+  double t = 0.0;                                       // simulated time [s]
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();   // eta_1 = (north, east, down) [m]
+  double roll = 0.0, pitch = 0.0, yaw = 0.0;            // eta_2 [rad]
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();   // nu_1 = (u, v, w) body [m/s]
+  Eigen::Vector3d angular_rate = Eigen::Vector3d::Zero();  // nu_2 = (p, q, r) body [rad/s]
+};
+
+}  // namespace offshore_gnc
