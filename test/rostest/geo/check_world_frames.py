@@ -20,7 +20,7 @@ class WorldFrames(unittest.TestCase):
         cls.listener = tf2_ros.TransformListener(cls.buf)
 
     def test_origin_latched(self):
-        deadline = rospy.Time.now() + rospy.Duration(20)
+        deadline = rospy.Time.now() + rospy.Duration(60)
         while not self.origin and rospy.Time.now() < deadline:
             rospy.sleep(0.05)
         self.assertTrue(self.origin, "no message on /origin")
@@ -33,7 +33,7 @@ class WorldFrames(unittest.TestCase):
         p = PointStamped()
         p.header.frame_id = "map_ned"
         p.point.x, p.point.y, p.point.z = 10.0, 3.0, 2.0  # 10 m north, 3 m east, 2 m down
-        q = self.buf.transform(p, "map", rospy.Duration(20))
+        q = self.buf.transform(p, "map", rospy.Duration(60))
         self.assertAlmostEqual(q.point.x, 3.0, places=6)   # east
         self.assertAlmostEqual(q.point.y, 10.0, places=6)  # north
         self.assertAlmostEqual(q.point.z, -2.0, places=6)  # up

@@ -1,0 +1,117 @@
+#pragma once
+// Co-operative mission logic (paper section 3.2.3, thesis chapter 5), ROS-free. The nodelets feed events
+// (detections, poses, guidance progress, manual control, peer liveness) and publish what these machines ask
+// for (paths, the target, status). All positions in map_ned (x north, y east, z down) [m], times in seconds.
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "offshore_gnc/common/counters.h"
+
+namespace offshore_gnc {
+namespace mission {
+
+// ------------------------------------------------------------------------------------------------- AUV
+struct AuvMissionParams {
+  int confirm_detections = 2;        // detections of the same object needed before it counts (sonar sweeps)
+  double confirm_radius = 2.0;       // detections closer than this are the same object [m]
+  double detection_max_age = 120.0;  // unconfirmed detections older than this are forgotten [s]
+  void validate() const;
+};
+
+enum class AuvPhase { Idle, Coverage, TargetFound, NoTarget };
+const char* toString(AuvPhase p);
+
+// Coverage -> first confirmed detection -> stop (thrusters off: the aColor AUV had no DP, paper 3.2.3) ->
+// report the target; coverage finished without a detection -> stop and say so.
+class AuvMission {
+ public:
+  explicit AuvMission(const AuvMissionParams& p = {});
+
+  void start(double t);                                   // Idle -> Coverage
+  // A sonar target in map_ned. Returns true when this detection confirms the target (phase -> TargetFound).
+  bool onDetection(const Eigen::Vector3d& p, double t);
+  void onCoverageFinished(double t);                      // guidance reached the last coverage waypoint
+
+  AuvPhase phase() const { return phase_; }
+  bool finished() const { return phase_ == AuvPhase::TargetFound || phase_ == AuvPhase::NoTarget; }
+  bool thrustersOff() const { return finished(); }       // the vehicle stops once the search is over
+  // Confirmed target: mean of the detections that confirmed it.
+  const std::optional<Eigen::Vector3d>& target() const { return target_; }
+  double detectionTime() const { return detection_time_; }  // NaN until found
+  std::string detail() const;
+  const Counters& counters() const { return counters_; }
+
+ private:
+  struct Cluster {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int n = 0;
+    double last_t = 0.0;
+    Eigen::Vector3d mean() const { return sum / n; }
+  };
+  AuvMissionParams p_;
+  AuvPhase phase_ = AuvPhase::Idle;
+  std::vector<Cluster> clusters_;
+  std::optional<Eigen::Vector3d> target_;
+  double start_time_ = 0.0, detection_time_;
+  Counters counters_;
+};
+
+// ------------------------------------------------------------------------------------------------- USV
+struct UsvMissionParams {
+  double waypoint_spacing = 10.0;   // straight path to the target with a waypoint every 10 m (paper 3.2.3) [m]
+  double standoff = 3.0;            // stop this far short of the target, then station keeping [m]
+  double min_distance = 1.0;        // a target closer than this (after the stand-off) needs no transit [m]
+  double peer_timeout = 30.0;       // AUV side silent this long before a target arrived -> report, keep DP [s]
+  void validate() const;
+};
+
+enum class UsvPhase { StationKeeping, Transit, Arrived, Manual, PeerLost };
+const char* toString(UsvPhase p);
+
+// Station keeping -> /target received -> straight path (SBB avoidance is the guidance's) -> stand-off reached
+// -> station keeping. Manual control always wins; autonomy resumes where it was when manual ends.
+class UsvMission {
+ public:
+  explicit UsvMission(const UsvMissionParams& p = {});
+
+  void onPose(const Eigen::Vector2d& ned, double t);
+  // A target from the AUV; returns true when it starts (or restarts) a transit. A target whose position is not
+  // finite is rejected and counted. A repeat of the same target (within 0.5 m) does not replan.
+  bool onTarget(const Eigen::Vector2d& target, double t);
+  void onPathFinished(double t);           // guidance reports the end of the path reached
+  void onManual(bool active, double t);
+  void onPeerAlive(double t);              // any sign of life from the AUV side (link status, relayed topic)
+  void tick(double t);                     // time-based checks (peer timeout)
+
+  UsvPhase phase() const { return manual_ ? UsvPhase::Manual : phase_; }
+  bool finished() const { return phase_ == UsvPhase::Arrived; }
+  // The path to follow (from the pose at the time the target came, to the stand-off point), waypoints every
+  // `waypoint_spacing`; empty while station keeping. `path_version` increments on every new path.
+  const std::vector<Eigen::Vector2d>& path() const { return path_; }
+  int pathVersion() const { return path_version_; }
+  const std::optional<Eigen::Vector2d>& target() const { return target_; }
+  const std::optional<Eigen::Vector2d>& stationPoint() const { return station_; }  // where DP holds
+  std::string detail() const;
+  const Counters& counters() const { return counters_; }
+
+ private:
+  UsvMissionParams p_;
+  UsvPhase phase_ = UsvPhase::StationKeeping;
+  bool manual_ = false;
+  std::optional<Eigen::Vector2d> pose_, target_, station_;
+  std::vector<Eigen::Vector2d> path_;
+  int path_version_ = 0;
+  double last_peer_ = 0.0;
+  bool peer_seen_ = false;
+  Counters counters_;
+};
+
+// Straight line from `from` to `to` with intermediate waypoints every `spacing` metres (both ends included,
+// the last leg possibly shorter). Degenerate input (not finite, spacing <= 0) gives an empty path.
+std::vector<Eigen::Vector2d> straightPath(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double spacing);
+
+}  // namespace mission
+}  // namespace offshore_gnc

@@ -1,0 +1,216 @@
+#!/usr/bin/python3
+"""Mission report from the two vehicles' rosbags and the scenario: map plot, cross-track plots, metrics.
+
+    python3 report.py --usv-bag usv.bag --auv-bag auv.bag --scenario config/scenarios/pyhajarvi.yaml --out DIR
+
+Writes DIR/metrics.json, DIR/summary.md, DIR/map.png, DIR/cross_track.png. Positions are plotted in the local
+NED frame (north up, east right), metres. Cross-track indicators follow thesis Tables 4.4 and 5.1 (RMSE, SD,
+MAE of the LOS cross-track error while following a path).
+"""
+import argparse
+import json
+import math
+import os
+
+import yaml
+
+THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4 Girona500 AUV)
+    "usv_rmse_m": 1.5482, "usv_sd_m": 0.7764, "usv_mae_m": 1.3397, "auv_rmse_m": 0.23,
+}
+
+MODE_FOLLOW_PATH = 1
+
+
+def cross_track_stats(errors):
+    """RMSE, SD and MAE of a list of cross-track errors [m] (thesis Tables 4.4, 5.1); NaN when empty."""
+    e = [x for x in errors if math.isfinite(x)]
+    if not e:
+        return {"rmse": float("nan"), "sd": float("nan"), "mae": float("nan"), "n": 0}
+    n = len(e)
+    mean = sum(e) / n
+    return {"rmse": math.sqrt(sum(x * x for x in e) / n),
+            "sd": math.sqrt(sum((x - mean) ** 2 for x in e) / n),
+            "mae": sum(abs(x) for x in e) / n, "n": n}
+
+
+def read_bag(path, topics):
+    """{topic: [(t, msg), ...]} for the topics present in a bag (missing bag -> empty)."""
+    out = {t: [] for t in topics}
+    if not path or not os.path.exists(path):
+        return out
+    import rosbag
+    with rosbag.Bag(path) as bag:
+        for topic, msg, t in bag.read_messages(topics=topics):
+            out[topic].append((t.to_sec(), msg))
+    return out
+
+
+def odom_track_ned(msgs):
+    """nav_msgs/Odometry in map (ENU) -> [(t, north, east, down)]."""
+    return [(t, m.pose.pose.position.y, m.pose.pose.position.x, -m.pose.pose.position.z) for t, m in msgs]
+
+
+def path_ned(path_msg):
+    """nav_msgs/Path -> [(north, east)], whatever its frame (map_ned or map)."""
+    ned = path_msg.header.frame_id.endswith("ned")
+    pts = []
+    for p in path_msg.poses:
+        x, y = p.pose.position.x, p.pose.position.y
+        pts.append((x, y) if ned else (y, x))
+    return pts
+
+
+def clearance(track, obstacles):
+    """Minimum horizontal distance from a track to the obstacles' surfaces [m] (NaN without obstacles)."""
+    best = float("nan")
+    for ob in obstacles:
+        r = float(ob.get("radius", max(ob.get("length", 0.0), ob.get("width", 0.0)) / 2.0))
+        for _, n, e, _ in track:
+            d = math.hypot(n - ob["north"], e - ob["east"]) - r
+            if not (d >= best):  # also replaces NaN
+                best = d
+    return best
+
+
+def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=None):
+    os.makedirs(out, exist_ok=True)
+    sc = yaml.safe_load(open(scenario)) if scenario else {}
+    u = read_bag(usv_bag, ["/usv/ground_truth/odom", "/usv/guidance/path", "/usv/guidance/status",
+                           "/usv/guidance/safety_boxes", "/usv/obstacles", "/target", "/usv/mission/status"])
+    a = read_bag(auv_bag, ["/auv/ground_truth/odom", "/auv/guidance/path", "/auv/guidance/status",
+                           "/auv/sonar/targets", "/target", "/auv/mission/status"])
+    usv_track = odom_track_ned(u["/usv/ground_truth/odom"])
+    auv_track = odom_track_ned(a["/auv/ground_truth/odom"])
+    usv_xte = [(t, m.cross_track_error) for t, m in u["/usv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
+    auv_xte = [(t, m.cross_track_error) for t, m in a["/auv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
+    us, au = cross_track_stats([e for _, e in usv_xte]), cross_track_stats([e for _, e in auv_xte])
+
+    targets_true = sc.get("targets", []) or []
+    detected = None
+    for t, m in (u["/target"] or a["/target"]):
+        detected = (t, m)
+    target_error = float("nan")
+    if detected and targets_true:
+        p = detected[1].origin
+        target_error = min(math.sqrt((p.x - tt["north"]) ** 2 + (p.y - tt["east"]) ** 2 +
+                                     (p.z - tt.get("depth", p.z)) ** 2) for tt in targets_true)
+    auv_found_t = next((t for t, m in a["/auv/mission/status"] if m.phase == "TARGET_FOUND"), None)
+    auv_start_t = a["/auv/mission/status"][0][0] if a["/auv/mission/status"] else None
+    last_usv = u["/usv/mission/status"][-1][1] if u["/usv/mission/status"] else None
+    last_auv = a["/auv/mission/status"][-1][1] if a["/auv/mission/status"] else None
+    all_t = [t for t, *_ in usv_track + auv_track]
+    sim_time = (max(all_t) - min(all_t)) if all_t else float("nan")
+    success = bool(outcome["success"]) if outcome else bool(last_usv and last_usv.success)
+
+    metrics = {
+        "success": success,
+        "outcome": (outcome or {}).get("reason", last_usv.detail if last_usv else "no USV status recorded"),
+        "usv_rmse_m": us["rmse"], "usv_sd_m": us["sd"], "usv_mae_m": us["mae"], "usv_xte_samples": us["n"],
+        "auv_rmse_m": au["rmse"], "auv_sd_m": au["sd"], "auv_mae_m": au["mae"], "auv_xte_samples": au["n"],
+        "target_error_m": target_error,
+        "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
+        "min_clearance_m": clearance(usv_track, sc.get("obstacles", []) or []),
+        "sim_time_s": sim_time, "wall_time_s": wall_time_s,
+        "usv_final_phase": last_usv.phase if last_usv else None,
+        "auv_final_phase": last_auv.phase if last_auv else None,
+        "thesis": THESIS,
+    }
+    # JSON has no NaN: write null for figures that could not be computed
+    clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in metrics.items()}
+    with open(os.path.join(out, "metrics.json"), "w") as f:
+        json.dump(clean, f, indent=2)
+
+    _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte)
+    _summary(out, clean, scenario)
+    return clean
+
+
+def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle, Polygon
+
+    fig, ax = plt.subplots(figsize=(8, 8))
+    for ob in sc.get("obstacles", []) or []:
+        ax.add_patch(Circle((ob["east"], ob["north"]), float(ob.get("radius", 0.5)), color="red", alpha=0.6))
+    if u["/usv/guidance/safety_boxes"]:
+        for box in u["/usv/guidance/safety_boxes"][-1][1].boxes:
+            ax.add_patch(Polygon([(c.y, c.x) for c in box.corners], closed=True, fill=False, ec="orange", lw=1.5))
+    for topic, bag, color, label in (("/usv/guidance/path", u, "green", "USV planned path"),
+                                     ("/auv/guidance/path", a, "cyan", "AUV planned path")):
+        if bag[topic]:
+            pts = path_ned(bag[topic][-1][1]) or (path_ned(bag[topic][0][1]) if bag[topic] else [])
+            if pts:
+                ax.plot([p[1] for p in pts], [p[0] for p in pts], "o--", color=color, ms=3, lw=1, label=label)
+    if usv_track:
+        ax.plot([p[2] for p in usv_track], [p[1] for p in usv_track], color="blue", lw=2, label="USV trajectory")
+    if auv_track:
+        ax.plot([p[2] for p in auv_track], [p[1] for p in auv_track], color="purple", lw=1.5, label="AUV trajectory")
+    for tt in sc.get("targets", []) or []:
+        ax.plot(tt["east"], tt["north"], "k*", ms=14, label="target (true)")
+    if detected:
+        p = detected[1].origin
+        ax.plot(p.y, p.x, "rx", ms=12, mew=2, label="target (detected)")
+    ax.set_xlabel("east [m]")
+    ax.set_ylabel("north [m]")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title("Co-operative mission: %s" % sc.get("name", ""))
+    fig.savefig(os.path.join(out, "map.png"), dpi=110, bbox_inches="tight")
+    plt.close(fig)
+
+    fig, axs = plt.subplots(2, 1, figsize=(9, 6), sharex=False)
+    for axx, xte, name in ((axs[0], usv_xte, "USV"), (axs[1], auv_xte, "AUV")):
+        if xte:
+            t0 = xte[0][0]
+            axx.plot([t - t0 for t, _ in xte], [e for _, e in xte], lw=1)
+        axx.axhline(0, color="k", lw=0.5)
+        axx.set_ylabel("%s e(t) [m]" % name)
+        axx.grid(True, alpha=0.3)
+    axs[1].set_xlabel("time on path [s]")
+    fig.suptitle("LOS cross-track error")
+    fig.savefig(os.path.join(out, "cross_track.png"), dpi=110, bbox_inches="tight")
+    plt.close(fig)
+
+
+def _fmt(v, unit=""):
+    return "n/a" if v is None else ("%.3f%s" % (v, unit) if isinstance(v, float) else str(v))
+
+
+def _summary(out, m, scenario):
+    th = m["thesis"]
+    lines = [
+        "# Mission report", "",
+        "Scenario: `%s`" % scenario, "",
+        "**%s** - %s" % ("SUCCESS" if m["success"] else "FAILED", m["outcome"]), "",
+        "| figure | this run | thesis field test |", "| --- | --- | --- |",
+        "| USV cross-track RMSE | %s | %.4f m (Table 5.1) |" % (_fmt(m["usv_rmse_m"], " m"), th["usv_rmse_m"]),
+        "| USV cross-track SD | %s | %.4f m |" % (_fmt(m["usv_sd_m"], " m"), th["usv_sd_m"]),
+        "| USV cross-track MAE | %s | %.4f m |" % (_fmt(m["usv_mae_m"], " m"), th["usv_mae_m"]),
+        "| AUV cross-track RMSE | %s | %.2f m (Table 4.4, Girona500) |" % (_fmt(m["auv_rmse_m"], " m"), th["auv_rmse_m"]),
+        "| detection time | %s | |" % _fmt(m["detection_time_s"], " s"),
+        "| target localisation error | %s | |" % _fmt(m["target_error_m"], " m"),
+        "| minimum clearance to obstacles | %s | |" % _fmt(m["min_clearance_m"], " m"),
+        "| simulated time | %s | |" % _fmt(m["sim_time_s"], " s"),
+        "| wall time | %s | |" % _fmt(m["wall_time_s"], " s"),
+        "", "Final phases: USV %s, AUV %s." % (m["usv_final_phase"], m["auv_final_phase"]), "",
+        "![map](map.png)", "", "![cross-track error](cross_track.png)", "",
+    ]
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write("\n".join(lines))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--usv-bag")
+    ap.add_argument("--auv-bag")
+    ap.add_argument("--scenario")
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args()
+    print(json.dumps(build(a.usv_bag, a.auv_bag, a.scenario, a.out), indent=2))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,55 @@
+"""rviz under a virtual X server (Xvfb), and a screenshot of it: what a user would see, checked by pixels."""
+import os
+import subprocess
+import time
+
+
+def free_display():
+    for n in range(90, 200):
+        if not os.path.exists("/tmp/.X11-unix/X%d" % n) and not os.path.exists("/tmp/.X%d-lock" % n):
+            return n
+    raise RuntimeError("no free X display number")
+
+
+class RvizScreen:
+    """Xvfb + rviz with a config against one master (a testing.Master). Use as a context manager."""
+
+    def __init__(self, master, config, size=(1280, 900)):
+        self.master, self.config, self.size = master, config, size
+        self.display = ":%d" % free_display()
+
+    def __enter__(self):
+        self.xvfb = self.master.run(["Xvfb", self.display, "-screen", "0", "%dx%dx24" % self.size, "+extension",
+                                     "GLX", "+render", "-noreset"], name="xvfb")
+        deadline = time.time() + 10
+        while not os.path.exists("/tmp/.X11-unix/X%s" % self.display[1:]) and time.time() < deadline:
+            time.sleep(0.1)
+        env = {"DISPLAY": self.display, "LIBGL_ALWAYS_SOFTWARE": "1"}
+        self.rviz = self.master.run(["rviz", "-d", self.config], name="rviz", env=env)
+        return self
+
+    def shot(self, path):
+        """Screenshot of the whole virtual screen as PNG."""
+        if self.rviz.poll() is not None:
+            raise RuntimeError("rviz exited with %s (log: %s)" % (self.rviz.returncode, self.master.log_path("rviz")))
+        subprocess.run(["import", "-display", self.display, "-window", "root", path], check=True, timeout=30)
+        return path
+
+    def __exit__(self, *exc):
+        from .masters import _kill
+        _kill(self.rviz, grace=3)
+        _kill(self.xvfb, grace=2)
+        return False
+
+
+def count_colour(png, rgb, tol=40):
+    """Pixels of a PNG within `tol` (per channel, 0-255) of the colour rgb."""
+    import numpy as np
+    import matplotlib.image as mpimg
+    img = mpimg.imread(png)
+    if img.dtype != np.uint8:
+        img = (img[..., :3] * 255).round().astype(np.int16)
+    else:
+        img = img[..., :3].astype(np.int16)
+    d = np.abs(img - np.array(rgb, dtype=np.int16)).max(axis=2)
+    return int((d <= tol).sum())

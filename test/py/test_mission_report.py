@@ -1,0 +1,72 @@
+"""The report's figures from a small bag written here: cross-track indicators, clearance, target error."""
+import json
+import math
+import os
+import subprocess
+import sys
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+from offshore_gnc import report  # noqa: E402
+
+
+def test_cross_track_stats_hand_computed():
+    s = report.cross_track_stats([1.0, -1.0, 2.0, float("nan")])
+    assert s["n"] == 3
+    assert s["rmse"] == pytest.approx(math.sqrt(6.0 / 3))
+    assert s["mae"] == pytest.approx(4.0 / 3)
+    mean = 2.0 / 3
+    assert s["sd"] == pytest.approx(math.sqrt(((1 - mean) ** 2 + (-1 - mean) ** 2 + (2 - mean) ** 2) / 3))
+    assert math.isnan(report.cross_track_stats([])["rmse"])
+
+
+def test_report_from_bags(tmp_path):
+    rosbag = pytest.importorskip("rosbag")
+    import rospy
+    from nav_msgs.msg import Odometry, Path
+    from geometry_msgs.msg import PoseStamped
+    from offshore_gnc.msg import GuidanceStatus, MissionStatus, Target
+
+    usv_bag = str(tmp_path / "usv.bag")
+    with rosbag.Bag(usv_bag, "w") as b:
+        for i in range(50):  # the USV drives north along east = 0.5 m, past a buoy at (25, 3)
+            t = rospy.Time(100 + i)
+            o = Odometry()
+            o.header.stamp = t
+            o.pose.pose.position.x = 0.5      # ENU x = east
+            o.pose.pose.position.y = float(i)  # ENU y = north
+            b.write("/usv/ground_truth/odom", o, t)
+            g = GuidanceStatus()
+            g.mode = GuidanceStatus.MODE_FOLLOW_PATH
+            g.cross_track_error = 0.5 if i % 2 else -0.5
+            b.write("/usv/guidance/status", g, t)
+        p = Path()
+        p.header.frame_id = "map_ned"
+        for n in (0.0, 10.0, 20.0):
+            ps = PoseStamped()
+            ps.pose.position.x = n
+            p.poses.append(ps)
+        b.write("/usv/guidance/path", p, rospy.Time(100))
+        tg = Target()
+        tg.origin.x, tg.origin.y, tg.origin.z = 45.0, 4.0, 5.0
+        b.write("/target", tg, rospy.Time(120))
+        s = MissionStatus(vehicle="usv", phase="ARRIVED", finished=True, success=True, detail="arrived")
+        b.write("/usv/mission/status", s, rospy.Time(149))
+    sc = tmp_path / "sc.yaml"
+    sc.write_text("name: t\nobstacles:\n  - {type: buoy, north: 25.0, east: 3.0, radius: 0.5}\n"
+                  "targets:\n  - {north: 45.0, east: 3.0, depth: 5.0}\n")
+    out = tmp_path / "report"
+    m = report.build(usv_bag, None, str(sc), str(out), wall_time_s=12.0)
+    assert m["success"] is True
+    assert m["usv_rmse_m"] == pytest.approx(0.5)
+    assert m["usv_mae_m"] == pytest.approx(0.5)
+    assert m["min_clearance_m"] == pytest.approx(2.5 - 0.5)
+    assert m["target_error_m"] == pytest.approx(1.0)
+    assert m["auv_rmse_m"] is None  # no AUV bag: reported as unknown, not as zero
+    assert m["sim_time_s"] == pytest.approx(49.0)
+    for f in ("metrics.json", "summary.md", "map.png", "cross_track.png"):
+        assert (out / f).stat().st_size > 0, f
+    assert json.load(open(out / "metrics.json"))["wall_time_s"] == 12.0
+    assert "SUCCESS" in (out / "summary.md").read_text()

@@ -1,0 +1,116 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/mission/mission.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::mission;
+
+TEST(StraightPath, WaypointEveryTenMetres) {
+  auto p = straightPath({0, 0}, {0, 45}, 10.0);
+  ASSERT_EQ(p.size(), 6u);  // 0 10 20 30 40 45
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR(p[i].y(), 10.0 * i, 1e-9);
+  EXPECT_NEAR(p.back().y(), 45.0, 1e-9);
+  EXPECT_EQ(straightPath({0, 0}, {30, 40}, 10.0).size(), 6u);  // 50 m: exactly five legs
+  EXPECT_EQ(straightPath({0, 0}, {3, 4}, 10.0).size(), 2u);
+  EXPECT_TRUE(straightPath({0, 0}, {NAN, 4}, 10.0).empty());
+  EXPECT_TRUE(straightPath({0, 0}, {3, 4}, 0.0).empty());
+}
+
+TEST(AuvMission, FirstConfirmedDetectionStopsTheSearch) {
+  AuvMission m({2, 2.0, 120.0});
+  EXPECT_EQ(m.phase(), AuvPhase::Idle);
+  EXPECT_FALSE(m.onDetection({1, 1, 5}, 0.0));  // not started yet
+  m.start(10.0);
+  EXPECT_FALSE(m.onDetection({40, 3, 5}, 20.0));   // first sighting
+  EXPECT_FALSE(m.onDetection({10, -8, 5}, 21.0));  // clutter elsewhere
+  EXPECT_TRUE(m.onDetection({41, 3.4, 5}, 25.0));  // same object again: confirmed
+  EXPECT_EQ(m.phase(), AuvPhase::TargetFound);
+  EXPECT_TRUE(m.thrustersOff());
+  ASSERT_TRUE(m.target().has_value());
+  EXPECT_NEAR(m.target()->x(), 40.5, 1e-9);
+  EXPECT_NEAR(m.target()->y(), 3.2, 1e-9);
+  EXPECT_NEAR(m.detectionTime(), 15.0, 1e-9);
+  EXPECT_FALSE(m.onDetection({10, -8, 5}, 30.0));  // after the stop nothing changes
+  EXPECT_NEAR(m.target()->x(), 40.5, 1e-9);
+}
+
+TEST(AuvMission, StaleCandidatesAreForgotten) {
+  AuvMission m({2, 2.0, 60.0});
+  m.start(0.0);
+  EXPECT_FALSE(m.onDetection({5, 5, 5}, 1.0));
+  EXPECT_FALSE(m.onDetection({5, 5, 5}, 100.0));  // 99 s later: the first one has expired
+  EXPECT_EQ(m.phase(), AuvPhase::Coverage);
+  EXPECT_TRUE(m.onDetection({5.5, 5, 5}, 110.0));
+}
+
+TEST(AuvMission, NoTargetAndBadInput) {
+  AuvMission m;
+  m.start(0.0);
+  EXPECT_FALSE(m.onDetection({NAN, 0, 0}, 1.0));
+  EXPECT_EQ(m.counters().get("detection_not_finite"), 1u);
+  m.onCoverageFinished(300.0);
+  EXPECT_EQ(m.phase(), AuvPhase::NoTarget);
+  EXPECT_TRUE(m.finished());
+  EXPECT_FALSE(m.target().has_value());
+  EXPECT_NE(m.detail().find("without a confirmed detection"), std::string::npos);
+  EXPECT_THROW(AuvMission({0, 2.0, 60.0}), ConfigError);
+}
+
+TEST(UsvMission, TransitToStandoffThenArrive) {
+  UsvMission m({10.0, 3.0, 1.0, 30.0});
+  m.onPose({0, 0}, 0.0);
+  EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
+  EXPECT_TRUE(m.path().empty());
+  EXPECT_TRUE(m.onTarget({0, 48}, 5.0));
+  EXPECT_EQ(m.phase(), UsvPhase::Transit);
+  ASSERT_EQ(m.path().size(), 6u);  // 0 10 20 30 40 45
+  EXPECT_NEAR(m.path().back().y(), 45.0, 1e-9);
+  EXPECT_NEAR(m.stationPoint()->y(), 45.0, 1e-9);
+  EXPECT_EQ(m.pathVersion(), 1);
+  EXPECT_FALSE(m.onTarget({0, 48.2}, 6.0));  // the relay's repeat does not replan
+  EXPECT_EQ(m.pathVersion(), 1);
+  m.onPathFinished(60.0);
+  EXPECT_EQ(m.phase(), UsvPhase::Arrived);
+  EXPECT_TRUE(m.finished());
+}
+
+TEST(UsvMission, ManualAlwaysWins) {
+  UsvMission m;
+  m.onPose({0, 0}, 0.0);
+  m.onTarget({50, 0}, 1.0);
+  m.onManual(true, 2.0);
+  EXPECT_EQ(m.phase(), UsvPhase::Manual);
+  EXPECT_NE(m.detail().find("manual"), std::string::npos);
+  m.onManual(false, 3.0);
+  EXPECT_EQ(m.phase(), UsvPhase::Transit);  // resumes
+  EXPECT_EQ(m.counters().get("manual_takeovers"), 1u);
+}
+
+TEST(UsvMission, SilentPeerHoldsPosition) {
+  UsvMission m({10.0, 3.0, 1.0, 30.0});
+  m.onPose({1, 2}, 0.0);
+  m.tick(20.0);
+  EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
+  m.tick(31.0);
+  EXPECT_EQ(m.phase(), UsvPhase::PeerLost);
+  EXPECT_NEAR(m.stationPoint()->x(), 1.0, 1e-12);
+  m.onPeerAlive(32.0);
+  EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
+}
+
+TEST(UsvMission, BadTargets) {
+  UsvMission m;
+  EXPECT_FALSE(m.onTarget({10, 10}, 0.0));  // no pose yet
+  EXPECT_EQ(m.counters().get("target_before_pose"), 1u);
+  m.onPose({0, 0}, 0.0);
+  EXPECT_FALSE(m.onTarget({NAN, 10}, 1.0));
+  EXPECT_EQ(m.counters().get("target_not_finite"), 1u);
+  EXPECT_FALSE(m.onTarget({0, 2}, 2.0));  // at the vehicle: inside the stand-off, nothing to do
+  EXPECT_EQ(m.phase(), UsvPhase::Arrived);
+  EXPECT_TRUE(m.path().empty());
+  m.onPose({NAN, 0}, 3.0);
+  EXPECT_EQ(m.counters().get("pose_not_finite"), 1u);
+}
