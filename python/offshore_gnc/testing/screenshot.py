@@ -20,11 +20,12 @@ class RvizScreen:
 
     def __enter__(self):
         self.xvfb = self.master.run(["Xvfb", self.display, "-screen", "0", "%dx%dx24" % self.size, "+extension",
-                                     "GLX", "+render", "-noreset"], name="xvfb")
+                                     "GLX", "+render", "-noreset"], name="xvfb", env={"LD_PRELOAD": ""})
         deadline = time.time() + 10
         while not os.path.exists("/tmp/.X11-unix/X%s" % self.display[1:]) and time.time() < deadline:
             time.sleep(0.1)
-        env = {"DISPLAY": self.display, "LIBGL_ALWAYS_SOFTWARE": "1"}
+        # Debian's rviz is not ours to sanitize: without this, a --sanitize run's LD_PRELOAD hangs its GL start
+        env = {"DISPLAY": self.display, "LIBGL_ALWAYS_SOFTWARE": "1", "LD_PRELOAD": ""}
         self.rviz = self.master.run(["rviz", "-d", self.config], name="rviz", env=env)
         return self
 
@@ -47,6 +48,8 @@ def count_colour(png, rgb, tol=40):
     import numpy as np
     import matplotlib.image as mpimg
     img = mpimg.imread(png)
+    if img.ndim == 2:  # `import` writes a grayscale PNG when the screen is still all black
+        img = np.stack([img] * 3, axis=2)
     if img.dtype != np.uint8:
         img = (img[..., :3] * 255).round().astype(np.int16)
     else:
