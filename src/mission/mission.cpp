@@ -120,6 +120,22 @@ std::vector<Eigen::Vector2d> straightPath(const Eigen::Vector2d& from, const Eig
   return path;
 }
 
+std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a) {
+  std::vector<Eigen::Vector3d> path;
+  const bool ok = std::isfinite(a.north_min) && std::isfinite(a.north_max) && std::isfinite(a.east_min) &&
+                  std::isfinite(a.east_max) && std::isfinite(a.depth) && a.north_max > a.north_min &&
+                  a.east_max >= a.east_min && a.spacing > 0.0;
+  if (!ok) return path;
+  const int legs = static_cast<int>(std::floor((a.east_max - a.east_min) / a.spacing + 1e-9)) + 1;
+  for (int i = 0; i < legs; ++i) {
+    const double e = a.east_min + i * a.spacing;
+    const bool north_bound = (i % 2) == 0;
+    path.emplace_back(north_bound ? a.north_min : a.north_max, e, a.depth);
+    path.emplace_back(north_bound ? a.north_max : a.north_min, e, a.depth);
+  }
+  return path;
+}
+
 UsvMission::UsvMission(const UsvMissionParams& p) : p_(p) { p_.validate(); }
 
 void UsvMission::onPose(const Eigen::Vector2d& ned, double t) {
@@ -197,6 +213,7 @@ std::string UsvMission::detail() const {
          << " waypoints)";
       break;
     case UsvPhase::Arrived: os << "arrived; station keeping " << p_.standoff << " m from the target"; break;
+    case UsvPhase::Manual: break;  // phase_ never holds Manual: manual_ overlays it
     case UsvPhase::PeerLost:
       os << "no sign of the AUV side for more than " << p_.peer_timeout << " s; holding position";
       break;

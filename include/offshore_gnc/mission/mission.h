@@ -113,5 +113,12 @@ class UsvMission {
 // the last leg possibly shorter). Degenerate input (not finite, spacing <= 0) gives an empty path.
 std::vector<Eigen::Vector2d> straightPath(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double spacing);
 
+// Lawnmower coverage of the rectangle [north_min, north_max] x [east_min, east_max] at one depth: legs along
+// north, `spacing` apart in east, starting at the south-west corner. Empty for a degenerate rectangle.
+struct CoverageArea {
+  double north_min = 0, north_max = 0, east_min = 0, east_max = 0, depth = 0, spacing = 5.0;
+};
+std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a);
+
 }  // namespace mission
 }  // namespace offshore_gnc

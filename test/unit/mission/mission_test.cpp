@@ -114,3 +114,15 @@ TEST(UsvMission, BadTargets) {
   m.onPose({NAN, 0}, 3.0);
   EXPECT_EQ(m.counters().get("pose_not_finite"), 1u);
 }
+
+TEST(CoveragePath, Lawnmower) {
+  auto p = coveragePath({20, 60, -10, 10, 3, 5});
+  ASSERT_EQ(p.size(), 10u);  // five legs at east -10, -5, 0, 5, 10
+  EXPECT_EQ(p[0], Eigen::Vector3d(20, -10, 3));
+  EXPECT_EQ(p[1], Eigen::Vector3d(60, -10, 3));
+  EXPECT_EQ(p[2], Eigen::Vector3d(60, -5, 3));  // turns at the far end
+  EXPECT_EQ(p[3], Eigen::Vector3d(20, -5, 3));
+  EXPECT_EQ(p.back(), Eigen::Vector3d(60, 10, 3));
+  EXPECT_TRUE(coveragePath({60, 20, -10, 10, 3, 5}).empty());
+  EXPECT_TRUE(coveragePath({20, 60, -10, 10, NAN, 5}).empty());
+}
