@@ -12,7 +12,9 @@ unset PYTHONPATH PYENV_VERSION || true
 log() { printf '\033[1m[%s]\033[0m %s\n' "$(basename "$0")" "$*" >&2; }
 
 # Workspace kept in a git-ignored folder, the package linked into its src/.
-ws_dir() { echo "$REPO/.ws${WS_SUFFIX:-}"; }
+# Under build/: rosrun searches the package folder but skips its build/ (a workspace elsewhere in the repo
+# would make every tool appear twice and rosrun refuse to choose).
+ws_dir() { echo "$REPO/build/ws${WS_SUFFIX:-}"; }
 
 ws_build() {  # ws_build [extra cmake args...]
   local ws; ws="$(ws_dir)"

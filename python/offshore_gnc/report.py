@@ -75,9 +75,11 @@ def clearance(track, obstacles):
 def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=None):
     os.makedirs(out, exist_ok=True)
     sc = yaml.safe_load(open(scenario)) if scenario else {}
-    u = read_bag(usv_bag, ["/usv/ground_truth/odom", "/usv/guidance/path", "/usv/guidance/status",
+    u = read_bag(usv_bag, ["/usv/ground_truth/odom", "/usv/guidance/path", "/usv/guidance/planned_path",
+                           "/usv/guidance/status",
                            "/usv/guidance/safety_boxes", "/usv/obstacles", "/target", "/usv/mission/status"])
-    a = read_bag(auv_bag, ["/auv/ground_truth/odom", "/auv/guidance/path", "/auv/guidance/status",
+    a = read_bag(auv_bag, ["/auv/ground_truth/odom", "/auv/guidance/path", "/auv/guidance/planned_path",
+                           "/auv/guidance/status",
                            "/auv/sonar/targets", "/target", "/auv/mission/status"])
     usv_track = odom_track_ned(u["/usv/ground_truth/odom"])
     auv_track = odom_track_ned(a["/auv/ground_truth/odom"])
@@ -89,17 +91,22 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     detected = None
     for t, m in (u["/target"] or a["/target"]):
         detected = (t, m)
-    target_error = float("nan")
+    # The mechanical sonar scans horizontally: it measures where the target is, not how deep (the detection
+    # carries the AUV's depth). The localisation error is therefore horizontal; the 3-D figure is reported too.
+    target_error = target_error_3d = float("nan")
     if detected and targets_true:
         p = detected[1].origin
-        target_error = min(math.sqrt((p.x - tt["north"]) ** 2 + (p.y - tt["east"]) ** 2 +
-                                     (p.z - tt.get("depth", p.z)) ** 2) for tt in targets_true)
+        best = min(targets_true, key=lambda tt: math.hypot(p.x - tt["north"], p.y - tt["east"]))
+        target_error = math.hypot(p.x - best["north"], p.y - best["east"])
+        target_error_3d = math.sqrt(target_error ** 2 + (p.z - best.get("depth", p.z)) ** 2)
     auv_found_t = next((t for t, m in a["/auv/mission/status"] if m.phase == "TARGET_FOUND"), None)
     auv_start_t = a["/auv/mission/status"][0][0] if a["/auv/mission/status"] else None
     last_usv = u["/usv/mission/status"][-1][1] if u["/usv/mission/status"] else None
     last_auv = a["/auv/mission/status"][-1][1] if a["/auv/mission/status"] else None
     all_t = [t for t, *_ in usv_track + auv_track]
     sim_time = (max(all_t) - min(all_t)) if all_t else float("nan")
+    if outcome and "sim_time_s" in outcome:  # when the job decided the outcome, not when the bags closed
+        sim_time = outcome["sim_time_s"]
     success = bool(outcome["success"]) if outcome else bool(last_usv and last_usv.success)
 
     metrics = {
@@ -107,7 +114,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "outcome": (outcome or {}).get("reason", last_usv.detail if last_usv else "no USV status recorded"),
         "usv_rmse_m": us["rmse"], "usv_sd_m": us["sd"], "usv_mae_m": us["mae"], "usv_xte_samples": us["n"],
         "auv_rmse_m": au["rmse"], "auv_sd_m": au["sd"], "auv_mae_m": au["mae"], "auv_xte_samples": au["n"],
-        "target_error_m": target_error,
+        "target_error_m": target_error, "target_error_3d_m": target_error_3d,
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
         "min_clearance_m": clearance(usv_track, sc.get("obstacles", []) or []),
         "sim_time_s": sim_time, "wall_time_s": wall_time_s,
@@ -137,12 +144,16 @@ def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte):
     if u["/usv/guidance/safety_boxes"]:
         for box in u["/usv/guidance/safety_boxes"][-1][1].boxes:
             ax.add_patch(Polygon([(c.y, c.x) for c in box.corners], closed=True, fill=False, ec="orange", lw=1.5))
-    for topic, bag, color, label in (("/usv/guidance/path", u, "green", "USV planned path"),
-                                     ("/auv/guidance/path", a, "cyan", "AUV planned path")):
-        if bag[topic]:
-            pts = path_ned(bag[topic][-1][1]) or (path_ned(bag[topic][0][1]) if bag[topic] else [])
-            if pts:
-                ax.plot([p[1] for p in pts], [p[0] for p in pts], "o--", color=color, ms=3, lw=1, label=label)
+    for vehicle, bag, color in (("usv", u, "green"), ("auv", a, "cyan")):
+        # the longest path guidance planned (SBB waypoints included), else the mission's path
+        for topic in ("/%s/guidance/planned_path" % vehicle, "/%s/guidance/path" % vehicle):
+            paths = [path_ned(m) for _, m in bag[topic]]
+            paths = [p for p in paths if p]
+            if paths:
+                pts = max(paths, key=len)
+                ax.plot([p[1] for p in pts], [p[0] for p in pts], "o--", color=color, ms=3, lw=1,
+                        label="%s planned path" % vehicle.upper())
+                break
     if usv_track:
         ax.plot([p[2] for p in usv_track], [p[1] for p in usv_track], color="blue", lw=2, label="USV trajectory")
     if auv_track:

@@ -14,6 +14,17 @@ from offshore_gnc.msg import MissionStatus
 
 def main():
     vehicle = sys.argv[1]
+    # rospy reads /use_sim_time once, at init: wait until the vehicle's launch file has set it
+    import rosgraph
+    params = rosgraph.Master("/mission_monitor")
+    deadline = time.time() + 60
+    while time.time() < deadline:
+        try:
+            if params.hasParam("/use_sim_time"):
+                break
+        except OSError:
+            pass
+        time.sleep(0.2)
     rospy.init_node("mission_monitor_" + vehicle, anonymous=True, disable_signals=True)
     last = {}
 

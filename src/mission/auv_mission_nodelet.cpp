@@ -28,12 +28,16 @@ class AuvMissionNodelet : public nodelet::Nodelet {
       mp.confirm_detections = p.integer("confirm_detections", mp.confirm_detections, 1, 100);
       mp.confirm_radius = p.number("confirm_radius", mp.confirm_radius, 0.1, 50);
       mp.detection_max_age = p.number("detection_max_age", mp.detection_max_age, 1, 1e5);
-      area_.north_min = p.requiredNumber("coverage/north_min", -1e4, 1e4);
-      area_.north_max = p.requiredNumber("coverage/north_max", -1e4, 1e4);
-      area_.east_min = p.requiredNumber("coverage/east_min", -1e4, 1e4);
-      area_.east_max = p.requiredNumber("coverage/east_max", -1e4, 1e4);
-      area_.depth = p.requiredNumber("coverage/depth", 0, 1000);
-      area_.spacing = p.number("coverage/spacing", 5.0, 0.5, 1000);
+      // the coverage area comes from the mission config (~coverage) or, in simulation, the scenario file
+      // loaded into ~scenario (its auv/coverage section)
+      const std::string c =
+          getPrivateNodeHandle().hasParam("scenario/auv/coverage") ? "scenario/auv/coverage/" : "coverage/";
+      area_.north_min = p.requiredNumber(c + "north_min", -1e4, 1e4);
+      area_.north_max = p.requiredNumber(c + "north_max", -1e4, 1e4);
+      area_.east_min = p.requiredNumber(c + "east_min", -1e4, 1e4);
+      area_.east_max = p.requiredNumber(c + "east_max", -1e4, 1e4);
+      area_.depth = p.requiredNumber(c + "depth", 0, 1000);
+      area_.spacing = p.number(c + "spacing", 5.0, 0.5, 1000);
       start_delay_ = p.number("start_delay", 2.0, 0, 3600);
       origin.lat_deg = vehicle.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
       origin.lon_deg = vehicle.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);

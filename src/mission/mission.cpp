@@ -120,6 +120,11 @@ std::vector<Eigen::Vector2d> straightPath(const Eigen::Vector2d& from, const Eig
   return path;
 }
 
+std::vector<Eigen::Vector2d> holdPath(const Eigen::Vector2d& p, double heading, double lead_in) {
+  if (!p.allFinite() || !std::isfinite(heading) || !(lead_in > 0.0)) return {};
+  return {p - lead_in * Eigen::Vector2d(std::cos(heading), std::sin(heading)), p};
+}
+
 std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a) {
   std::vector<Eigen::Vector3d> path;
   const bool ok = std::isfinite(a.north_min) && std::isfinite(a.north_max) && std::isfinite(a.east_min) &&

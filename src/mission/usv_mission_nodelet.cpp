@@ -12,6 +12,7 @@
 
 #include <memory>
 
+#include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/mission/mission.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
@@ -55,17 +56,28 @@ class UsvMissionNodelet : public nodelet::Nodelet {
   }
 
   void onOdom(const nav_msgs::Odometry::ConstPtr& o) {
-    // odometry is in map (ENU): north = y, east = x
+    // odometry is in map (ENU): north = y, east = x; ENU yaw -> NED heading
+    const auto& q = o->pose.pose.orientation;
+    const double yaw_enu = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
     mission_->onPose({o->pose.pose.position.y, o->pose.pose.position.x}, o->header.stamp.toSec());
+    if (!holding_published_ && mission_->pathVersion() == 0 && mission_->stationPoint()) {
+      // dynamic positioning where the mission starts, until a target arrives (paper 3.2.3)
+      publishPath(mission::holdPath(*mission_->stationPoint(), geo::enuYawToNed(yaw_enu)));
+      holding_published_ = true;
+    }
+  }
+
+  void publishPath(const std::vector<Eigen::Vector2d>& path) {
+    std::vector<Eigen::Vector3d> pts;
+    for (const auto& w : path) pts.emplace_back(w.x(), w.y(), 0.0);
+    path_pub_.publish(mission_ros::toPath(pts, ros::Time::now()));
   }
 
   void onTarget(const Target::ConstPtr& t) {
     const int before = mission_->pathVersion();
     const bool transit = mission_->onTarget({t->origin.x, t->origin.y}, ros::Time::now().toSec());
     if (mission_->pathVersion() != before) {
-      std::vector<Eigen::Vector3d> pts;
-      for (const auto& w : mission_->path()) pts.emplace_back(w.x(), w.y(), 0.0);
-      path_pub_.publish(mission_ros::toPath(pts, ros::Time::now()));
+      publishPath(mission_->path().empty() ? mission::holdPath(*mission_->stationPoint(), 0.0) : mission_->path());
       following_ = false;
       NODELET_INFO("target received: %s", mission_->detail().c_str());
     } else if (!transit) {
@@ -111,7 +123,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
   }
 
   double manual_timeout_ = 1.0, distance_to_go_ = std::numeric_limits<double>::quiet_NaN();
-  bool following_ = false;
+  bool following_ = false, holding_published_ = false;
   ros::Time last_manual_;
   std::unique_ptr<mission::UsvMission> mission_;
   ros::Publisher path_pub_, status_pub_;

@@ -25,7 +25,7 @@ def test_rviz_draws_path_and_markers(tmp_path):
     with MasterSet(["usv"]) as ms:
         m = ms["usv"]
         m.run(["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/WorldFrames"], name="frames")
-        m.publish("/usv/guidance/path", "nav_msgs/Path", PATH_MSG)
+        m.publish("/usv/guidance/planned_path", "nav_msgs/Path", PATH_MSG)
         m.publish("/usv/markers", "visualization_msgs/MarkerArray", MARKERS)
         with RvizScreen(m, os.path.join(REPO, "config", "rviz", "usv.rviz")) as screen:
             png = str(tmp_path / "rviz.png")

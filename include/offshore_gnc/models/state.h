@@ -2,6 +2,8 @@
 // Vehicle state shared by the models, the sensor simulators, guidance and control (all ROS-free).
 // NED world frame (x north, y east, z down) and body frame (x forward, y starboard, z down), SI units,
 // angles in radians (yaw clockwise from north, wrapped to (-pi, pi]).
+#include <cmath>
+
 #include <Eigen/Core>
 
 namespace offshore_gnc {
@@ -13,5 +15,10 @@ struct VehicleState {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();   // nu_1 = (u, v, w) body [m/s]
   Eigen::Vector3d angular_rate = Eigen::Vector3d::Zero();  // nu_2 = (p, q, r) body [rad/s]
 };
+
+inline bool isFinite(const VehicleState& s) {
+  return std::isfinite(s.t) && s.position.allFinite() && std::isfinite(s.roll) && std::isfinite(s.pitch) &&
+         std::isfinite(s.yaw) && s.velocity.allFinite() && s.angular_rate.allFinite();
+}
 
 }  // namespace offshore_gnc

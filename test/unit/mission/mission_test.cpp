@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/mission/mission.h"
 
@@ -125,4 +126,13 @@ TEST(CoveragePath, Lawnmower) {
   EXPECT_EQ(p.back(), Eigen::Vector3d(60, 10, 3));
   EXPECT_TRUE(coveragePath({60, 20, -10, 10, 3, 5}).empty());
   EXPECT_TRUE(coveragePath({20, 60, -10, 10, NAN, 5}).empty());
+}
+
+TEST(HoldPath, EndsAtThePointAlongTheHeading) {
+  auto h = holdPath({10, 20}, kPi / 2, 2.0);  // heading east
+  ASSERT_EQ(h.size(), 2u);
+  EXPECT_NEAR(h[0].x(), 10.0, 1e-12);
+  EXPECT_NEAR(h[0].y(), 18.0, 1e-12);
+  EXPECT_EQ(h[1], Eigen::Vector2d(10, 20));
+  EXPECT_TRUE(holdPath({NAN, 0}, 0.0).empty());
 }

@@ -1,0 +1,52 @@
+#pragma once
+// ROS-free closed loop: the simulator's plant (sim::UsvSimulation / sim::AuvSimulation, with current) + LOS
+// guidance (+ SBB planner) + the vehicle controller, at the control rate. Used by the gtests and by
+// `./scripts/bench tracking`, so both measure the same thing.
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "offshore_gnc/control/vehicle_control.h"
+#include "offshore_gnc/guidance/los.h"
+#include "offshore_gnc/guidance/metrics.h"
+#include "offshore_gnc/guidance/sbb.h"
+
+namespace offshore_gnc {
+namespace control {
+
+struct ClosedLoopConfig {
+  std::vector<Eigen::Vector3d> path;                 // NED waypoints
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();   // start position (NED)
+  double start_yaw = 0.0;
+  Eigen::Vector2d current = Eigen::Vector2d(0.0, 0.2);  // NED current [m/s] (0.2 m/s cross current)
+  guidance::LosParams los;
+  std::vector<guidance::SbbObstacle> obstacles;      // USV only: buoys (also placed in the simulated world)
+  guidance::SbbParams sbb;
+  double max_time = 600.0;                           // [s]
+  double control_dt = 0.1;                           // [s]
+  std::uint64_t seed = 1;
+};
+
+struct ClosedLoopResult {
+  guidance::TrackingMetrics metrics;   // over the samples in path-following mode
+  bool finished = false;               // station keeping reached
+  double time = 0.0;                   // time to the end of the path [s]
+  double min_clearance = 1e9;          // closest approach to an obstacle's edge [m]
+  std::size_t inside_box_samples = 0;  // samples inside a safety box (must be 0)
+  std::size_t nan_outputs = 0;         // actuator outputs that were not finite (must be 0)
+  double hold_error = 0.0;             // distance to the last waypoint after 60 s of station keeping [m]
+  std::vector<Eigen::Vector3d> track;  // positions at the control rate
+  std::vector<Eigen::Vector3d> planned_path;
+  std::string status;
+};
+
+ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const UsvControlParams& ctrl = UsvControlParams());
+ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg,
+                              const Girona500ControlParams& ctrl = Girona500ControlParams());
+
+// Guidance output -> control reference (also used by the nodelets' GuidanceStatus conversion).
+Reference toReference(const guidance::LosOutput& o);
+
+}  // namespace control
+}  // namespace offshore_gnc

@@ -1,0 +1,135 @@
+#pragma once
+// Vehicle controllers (thesis 4.2.3, Tables 4.1-4.3): guidance references in, actuator commands out. ROS-free.
+// - USV: surge and yaw PIDs on low-pass + notch filtered feedback -> normalised joystick command (the CAN gateway
+//   forwards it as the manual 3-axis joystick would); station keeping with position PIDs in the body frame.
+// - aColor AUV: yaw PID, heave P, constant surge -> RC channel PWM (1100-1900 us).
+// - Girona500: north, east, down, yaw PIDs -> body wrench -> allocation T^+ tau with saturation.
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+#include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/control/allocation.h"
+#include "offshore_gnc/control/filters.h"
+#include "offshore_gnc/control/pid.h"
+#include "offshore_gnc/models/state.h"
+
+namespace offshore_gnc {
+namespace control {
+
+enum class RefMode { kIdle, kFollow, kHold };
+
+// What control needs from guidance (GuidanceStatus): NED, radians.
+struct Reference {
+  RefMode mode = RefMode::kIdle;
+  double heading = 0.0;                                  // psi_d
+  double surge = 0.0;                                    // u_d [m/s]
+  double depth = 0.0;                                    // AUV depth [m]
+  double path_angle = 0.0;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();       // kHold: hold point; kFollow: projection on the leg
+  bool valid() const;
+};
+
+struct JoystickOut {
+  double surge = 0.0, sway = 0.0, yaw = 0.0;  // -1..1
+};
+
+struct UsvControlParams {
+  PidGains surge{506.598, 83.2, 2.531, 4000.0, 2000.0};  // Table 4.1, output [N]
+  PidGains yaw{5.236, 0.071, 15.084, 1.0, 0.3};          // Table 4.1, output: normalised yaw deflection
+  double max_surge_force = 4000.0;                       // force at full joystick deflection [N]
+  FilterParams filter;                                   // eq. 4.15-4.16
+  double dp_speed_gain = 0.1;                            // station keeping: surge/sway speed per metre [1/s]
+  double dp_max_speed = 0.5;                             // [m/s]
+  double dp_sway_gain = 0.3;                             // sway deflection per m/s of sway speed error
+  double dp_radius = 3.0;                                // beyond it station keeping points the bow at the point [m]
+  double dt = 0.1;                                       // control period [s]
+  void validate() const;
+};
+
+class UsvController {
+ public:
+  explicit UsvController(const UsvControlParams& p = UsvControlParams());
+  void setParams(const UsvControlParams& p);  // rebuilds the filters on changed filter settings
+  const UsvControlParams& params() const { return p_; }
+  JoystickOut update(const VehicleState& s, const Reference& r);  // never NaN; bad input -> neutral
+  const Counters& counters() const { return counters_; }
+  double filteredHeading() const { return yaw_f_; }
+
+ private:
+  UsvControlParams p_;
+  Pid surge_, yaw_;
+  FeedbackFilter f_u_, f_yaw_;
+  double yaw_unwrapped_ = 0.0, yaw_prev_ = 0.0, yaw_f_ = 0.0, u_f_prev_ = 0.0;
+  bool primed_ = false;
+  Counters counters_;
+};
+
+struct AcolorControlParams {
+  PidGains yaw{0.580, 0.276, 0.812, 1.0, 0.3};  // Table 4.2, normalised yaw deflection
+  PidGains heave{300.0, 0.0, 0.0, 400.0, 0.0};  // Table 4.2 heave P, output in PWM microseconds from neutral
+  double surge_pwm = 1650.0;                     // constant surge command [us]
+  int channel_heave = 3, channel_yaw = 4, channel_surge = 5;  // 1-based RC channels
+  int num_channels = 8;
+  double dt = 0.1;
+  void validate() const;
+};
+
+class AcolorController {
+ public:
+  explicit AcolorController(const AcolorControlParams& p = AcolorControlParams());
+  void setParams(const AcolorControlParams& p);
+  const AcolorControlParams& params() const { return p_; }
+  std::vector<std::uint16_t> update(const VehicleState& s, const Reference& r);  // PWM per channel
+  const Counters& counters() const { return counters_; }
+  static std::uint16_t pwm(double normalised);  // -1..1 -> 1100..1900 us, 1500 neutral
+
+ private:
+  AcolorControlParams p_;
+  Pid yaw_, heave_;
+  Counters counters_;
+};
+
+struct Girona500ControlParams {
+  PidGains north{151.366, 0.0106, 1081.310, 300.0, 50.0};  // Table 4.3, output [N]
+  PidGains east{151.366, 0.0106, 1081.310, 300.0, 50.0};
+  PidGains down{151.366, 0.0106, 1081.310, 300.0, 50.0};
+  PidGains yaw{63.425, 0.0037, 271.85, 100.0, 20.0};       // output [N m]
+  double lead = 0.12;            // path following: reference this far ahead of the projection on the leg; with
+                                 // the reference moving at u_d the P term alone sets the transit thrust [m]
+  double cross_ki = 0.05;        // path frame cross-track integral gain (moves the reference across the leg so
+                                 // that current leaves no standing error; 0 = off) [1/s]
+  double cross_limit = 3.0;      // |cross-track offset| bound (anti-windup) [m]
+  Eigen::MatrixXd tcm;           // 4 x n (surge, sway, heave, yaw); default: models::AuvParams::girona500().tcm()
+  Eigen::VectorXd max_thrust;    // default: the smaller of each thruster's forward / reverse maximum [N]
+  ThrustAllocator::CommandFor command_for;  // default: the models' inverse thruster curves
+  double dt = 0.1;
+  Girona500ControlParams();
+  void validate() const;
+};
+
+struct Girona500Out {
+  Eigen::Vector4d tau = Eigen::Vector4d::Zero();  // requested body wrench (X, Y, Z, N)
+  AllocationResult alloc;
+};
+
+class Girona500Controller {
+ public:
+  explicit Girona500Controller(const Girona500ControlParams& p = Girona500ControlParams());
+  void setParams(const Girona500ControlParams& p);
+  const Girona500ControlParams& params() const { return p_; }
+  Girona500Out update(const VehicleState& s, const Reference& r);
+  const ThrustAllocator& allocator() const { return alloc_; }
+  const Counters& counters() const { return counters_; }
+
+ private:
+  Girona500ControlParams p_;
+  Pid n_, e_, d_, yaw_;
+  double cross_offset_ = 0.0;
+  ThrustAllocator alloc_;
+  Counters counters_;
+};
+
+}  // namespace control
+}  // namespace offshore_gnc

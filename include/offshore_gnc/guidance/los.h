@@ -1,0 +1,93 @@
+#pragma once
+// LOS path following (thesis 4.2.2, eq. 4.9-4.14): path-tangential angle, cross-track error, look-ahead steering
+// with integral action (ILOS, anti-windup) and an optional adaptive crab-angle estimate (ALOS, Fossen 2023
+// eq. 12.108), waypoint switching on a circle (USV) or sphere (AUV) of acceptance plus a passed-waypoint rule,
+// and station keeping at the end of the path. ROS-free; NED, radians.
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/models/state.h"
+
+namespace offshore_gnc {
+namespace guidance {
+
+enum class Mode { kIdle = 0, kFollowPath = 1, kStationKeeping = 2, kManual = 3, kHoldFault = 4 };
+
+struct LosParams {
+  double kp = 0.1;                 // 1/Delta: look-ahead proportional gain [1/m] (Table 4.1 LOS)
+  double ki = 0.001;               // integral gain [1/(m s)] (Table 4.1 LOS)
+  double integral_limit = 0.35;    // |Ki * int e| bound: at most ~20 deg of integral steering (anti-windup) [rad]
+  bool adaptive_crab = true;       // estimate the crab (sideslip) angle beta (ALOS)
+  double crab_gain = 0.002;        // gamma of the beta estimate update [1/(m s)]
+  double crab_limit = 0.6;         // |beta_hat| bound [rad]
+  double acceptance_radius = 16.0; // R: circle (USV, 2 L_USV) or sphere (AUV) of acceptance [m]
+  bool sphere = false;             // 3-D sphere of acceptance (AUV) instead of the 2-D circle
+  double surge_speed = 1.5;        // cruise surge reference [m/s]
+  double min_leg_length = 0.05;    // consecutive waypoints closer than this are merged [m]
+
+  void validate() const;           // throws ConfigError naming the value
+};
+
+struct LosOutput {
+  Mode mode = Mode::kIdle;
+  std::size_t active_leg = 0;      // index of the waypoint being approached
+  std::size_t num_waypoints = 0;
+  double cross_track_error = 0.0;  // e (eq. 4.12), positive to starboard [m]
+  double along_track_distance = 0.0;
+  double distance_to_go = 0.0;
+  double path_angle = 0.0;         // chi_p (eq. 4.11)
+  double desired_heading = 0.0;    // psi_d (eq. 4.9)
+  double desired_depth = 0.0;      // depth of the active leg (constant-depth legs) [m]
+  double desired_surge = 0.0;
+  double crab_angle = 0.0;         // beta_hat
+  double acceptance_radius = 0.0;
+  Eigen::Vector3d hold_position = Eigen::Vector3d::Zero();  // station keeping / fault hold point (NED)
+  Eigen::Vector3d path_point = Eigen::Vector3d::Zero();     // projection of the vehicle on the active leg
+  std::string status_text;
+};
+
+class LosGuidance {
+ public:
+  explicit LosGuidance(const LosParams& p = LosParams());
+  void setParams(const LosParams& p);  // keeps progress; validates
+  const LosParams& params() const { return p_; }
+
+  // New path (NED waypoints). Duplicates are merged; non-finite waypoints reject the path (hold). When
+  // `resume` is set and a vehicle pose is known, the active leg is the one nearest to the vehicle (replanning
+  // with SBB waypoints must not send the vehicle back to the start). Returns false when the path is unusable.
+  bool setPath(const std::vector<Eigen::Vector3d>& waypoints, bool resume = false);
+  const std::vector<Eigen::Vector3d>& path() const { return wp_; }
+  void clear();
+
+  // One guidance step at time dt after the previous one. Never returns NaN: bad pose -> kHoldFault.
+  LosOutput update(const VehicleState& s, double dt);
+
+  const Counters& counters() const { return counters_; }
+  std::size_t activeLeg() const { return leg_; }
+
+ private:
+  LosOutput hold(Mode mode, const std::string& why);
+  double remaining(const Eigen::Vector3d& pos) const;
+
+  LosParams p_;
+  std::vector<Eigen::Vector3d> wp_;
+  std::size_t leg_ = 1;
+  double integral_ = 0.0;
+  double beta_hat_ = 0.0;
+  bool finished_ = false;
+  bool have_pose_ = false;
+  std::string path_error_;
+  Eigen::Vector3d last_pos_ = Eigen::Vector3d::Zero();
+  double last_yaw_ = 0.0;
+  Counters counters_;
+};
+
+// Cross-track error (eq. 4.12) and along-track distance of `p` on the leg a->b; returns chi_p (eq. 4.11).
+double legGeometry(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p, double* e,
+                   double* s);
+
+}  // namespace guidance
+}  // namespace offshore_gnc

@@ -1,0 +1,65 @@
+#pragma once
+// Safety boundary box planner (thesis 4.1.2, eq. 4.5-4.7; Publication III eq. 9-12), extended as the thesis'
+// future work asks: several obstacles at once, boxes that overlap (or leave no passable gap) merged, no detour
+// waypoint inside another box, and a "blocked" result when neither side fits in the navigable corridor.
+// ROS-free, NED (x north, y east), metres and radians.
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace offshore_gnc {
+namespace guidance {
+
+struct SbbObstacle {
+  std::uint32_t id = 0;
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // eq. 4.3 origin (N_o, E_o)
+  double length = 0.0;                               // obstacle extents [m]
+  double width = 0.0;
+};
+
+struct SbbParams {
+  double safety_x = 5.0;      // d_dist_x: along the path [m]
+  double safety_y = 5.0;      // d_dist_y: across the path [m]
+  double corridor = 2.0;      // half width swept by the vehicle around the path [m]
+  double max_offset = 50.0;   // navigable half width around the path (harbour route); beyond it a side is unsafe [m]
+  double stop_margin = 2.0;   // blocked: the path ends this far before the box [m]
+  double approach = 0.0;      // original waypoints closer than this to a detour corner are dropped, so a vehicle
+                              // with a large turning circle gets a gentle run-in and run-out (0 = thesis) [m]
+  void validate() const;
+};
+
+enum class SbbSide : int { kNone = 0, kPort = -1, kStarboard = 1, kBlocked = 2 };
+
+struct SbbBox {
+  std::vector<std::uint32_t> ids;
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double path_angle = 0.0;    // alpha_box = alpha_path
+  double length = 0.0;        // along the path: extent + 2 safety_x (eq. 4.5 gives the half of it)
+  double width = 0.0;         // across the path
+  std::array<Eigen::Vector2d, 4> corners;  // rear-port, front-port, front-starboard, rear-starboard (eq. 4.6)
+  bool cuts_path = false;
+  SbbSide side = SbbSide::kNone;
+  bool contains(const Eigen::Vector2d& p, double margin = 0.0) const;
+};
+
+struct SbbPlan {
+  std::vector<Eigen::Vector3d> path;  // the path to follow, detour waypoints inserted
+  std::vector<SbbBox> boxes;
+  bool blocked = false;
+  bool modified = false;              // at least one detour inserted or waypoint dropped
+  std::string status;
+};
+
+// Box of one obstacle aligned with `path_angle` (eq. 4.5-4.6). The obstacle's orientation relative to the path
+// is unknown (LiDAR extents), so the larger extent is used on both axes.
+SbbBox makeBox(const SbbObstacle& o, double path_angle, const SbbParams& p);
+
+// Plans around `obstacles` along `path`; `vehicle` (NED) decides the closer side (eq. 4.7).
+SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d& vehicle,
+                const std::vector<SbbObstacle>& obstacles, const SbbParams& p);
+
+}  // namespace guidance
+}  // namespace offshore_gnc

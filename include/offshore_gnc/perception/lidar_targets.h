@@ -1,0 +1,89 @@
+#pragma once
+// LiDAR target extraction (thesis 4.1.1, paper 3.1, eq. 4.3), ROS-free. Reads a PointCloud2-layout buffer
+// in place (no copy into a PCL cloud), keeps returns inside a range / height band and outside the own hull,
+// splits each layer in scan order where consecutive returns jump by more than `gap`, joins the wrap at the
+// end of a 360-degree aperture, merges the layers' segments that touch, and describes each target.
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/perception/target_geometry.h"
+
+namespace offshore_gnc {
+namespace perception {
+
+// sensor_msgs/PointField datatype codes (a wire format, so the core can read the buffer without ROS).
+enum class FieldType : std::uint8_t { Int8 = 1, UInt8 = 2, Int16 = 3, UInt16 = 4, Int32 = 5, UInt32 = 6, Float32 = 7, Float64 = 8 };
+
+struct CloudField {
+  bool present = false;
+  std::uint32_t offset = 0;
+  std::uint8_t datatype = 0;  // FieldType code as received (validated by the extractor)
+  std::uint32_t count = 1;
+};
+
+// A view of a PointCloud2's buffer: nothing is copied.
+struct CloudView {
+  const std::uint8_t* data = nullptr;
+  std::size_t size = 0;
+  std::uint32_t width = 0, height = 0, point_step = 0, row_step = 0;
+  bool big_endian = false;
+  CloudField x, y, z, ring;
+};
+
+struct LidarConfig {
+  double min_range = 0.5;        // [m] closer returns are dropped (spray, the sensor mount)
+  double max_range = 200.0;      // [m]
+  double min_z = -1.0;           // [m] in the cloud frame: below = water-surface returns
+  double max_z = 10.0;           // [m]
+  double gap = 1.0;              // [m] jump between consecutive returns that starts a new target
+  double layer_merge = 1.0;      // [m] segments of different layers closer than this are one target
+  int min_points = 3;            // smaller clusters are dropped (spray, birds)
+  // Own hull, axis-aligned box in the cloud frame; returns inside are dropped. Empty box (min >= max) = off.
+  double hull_min_x = 0, hull_max_x = 0, hull_min_y = 0, hull_max_y = 0;
+
+  void validate() const;  // throws ConfigError naming the value
+};
+
+enum class CloudError { None, Empty, MissingXyz, BadFieldType, SizeMismatch, BigEndian };
+const char* toString(CloudError e);
+
+struct LidarResult {
+  CloudError error = CloudError::None;
+  std::string message;                  // human-readable reason when error != None
+  std::vector<TargetGeometry> targets;  // in the cloud frame, sensor at its origin
+  std::size_t points_in = 0, points_used = 0, non_finite = 0;
+};
+
+class LidarTargetExtractor {
+ public:
+  explicit LidarTargetExtractor(const LidarConfig& cfg);
+  // Not thread-safe (reuses scratch buffers between frames); one extractor per nodelet.
+  LidarResult extract(const CloudView& cloud);
+  const Counters& counters() const { return counters_; }
+  Counters& counters() { return counters_; }
+  const LidarConfig& config() const { return cfg_; }
+
+ private:
+  struct P { float x, y, z; };
+  struct Segment {
+    std::uint32_t layer, begin, end;  // [begin, end) in layer_points_[layer]
+    float minx, maxx, miny, maxy;
+  };
+  bool checkLayout(const CloudView& c, LidarResult& r);
+  bool closeEnough(const Segment& a, const Segment& b) const;
+  std::size_t find(std::size_t i);
+
+  LidarConfig cfg_;
+  Counters counters_;
+  std::vector<std::vector<P>> layers_;
+  std::vector<Segment> segments_;
+  std::vector<std::size_t> parent_, order_;
+  std::vector<std::vector<Eigen::Vector3d>> cluster_points_;
+};
+
+}  // namespace perception
+}  // namespace offshore_gnc

@@ -1,0 +1,143 @@
+#pragma once
+// The relay engine: TCP links to the peer relays (plain POSIX sockets + poll on one I/O thread), handshake
+// with fresh nonces, per-connection HMAC keys and replay protection, announces with type + md5sum,
+// reliable queue with acks and resend, rate limits, compression, heartbeats and reconnection with backoff.
+// ROS-free: the nodelet feeds serialized messages in and publishes what the callbacks hand out.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/relay/policy.h"
+#include "offshore_gnc/relay/wire.h"
+
+namespace offshore_gnc {
+namespace relay {
+
+struct TopicConfig {
+  std::string topic;      // local name
+  std::string type;       // ROS type, e.g. offshore_gnc/Target (checked at both ends)
+  std::string direction;  // "out" (local -> peers) or "in" (peers -> local)
+  std::string remote;     // out: name on the far side (default: topic)
+  std::vector<std::string> peers;  // out: destinations, in: accepted sources (empty = all peers)
+  bool reliable = true;
+  double rate_hz = 0.0;  // 0 = unlimited
+  bool latched = false;
+  bool compress = false;
+};
+
+struct PeerConfig {
+  std::string name;
+  std::string host;  // empty: the peer dials us
+  int port = 0;
+};
+
+struct RelayConfig {
+  std::string name;
+  std::string listen_host = "127.0.0.1";
+  int listen_port = 0;  // 0 = do not listen (-1 in tests: any free port)
+  bool auth = true;     // HMAC-SHA256 on every frame; off only by explicit configuration
+  std::string key;      // pre-shared key (required when auth)
+  double heartbeat_period = 0.2, link_timeout = 1.0, backoff_min = 0.1, backoff_max = 2.0;
+  double ack_delay = 0.5;  // acks trail delivery to ROS by this long (crash window covered by resends)
+  std::size_t queue_messages = 1000, queue_bytes = 64u << 20, max_frame_bytes = 32u << 20;
+  std::vector<PeerConfig> peers;
+  std::vector<TopicConfig> topics;
+};
+
+// Fills defaults and throws ConfigError naming the offending entry.
+void validate(RelayConfig& c);
+
+struct TypeInfo {
+  std::string type, md5, definition;
+};
+
+struct Announce {
+  std::string topic;  // the name on this side
+  TypeInfo info;
+  bool latched = false, reliable = true;
+};
+
+struct TopicStatus {
+  std::string topic, remote, direction, transport;
+  std::uint64_t messages = 0, bytes = 0, dropped = 0;
+  double rate_hz = 0.0, bandwidth_bps = 0.0;
+};
+
+struct PeerStatus {
+  std::string name, address;
+  bool up = false;
+  double rtt = 0.0, loss = 0.0;
+  std::uint32_t reconnects = 0;
+  std::uint64_t frames_rejected = 0;
+  std::size_t queued = 0;
+  std::vector<TopicStatus> topics;
+};
+
+struct Callbacks {
+  // An announced topic from `peer` matched in-topic `index`: return "" to accept, or the refusal reason.
+  std::function<std::string(std::size_t index, const std::string& peer, const Announce&)> on_announce;
+  // A message for in-topic `index` (serialized ROS message).
+  std::function<void(std::size_t index, const std::string& peer, const std::vector<std::uint8_t>& data)> on_message;
+  // Something a user must see (the ROS side throttles): level 1 = warn, 2 = error.
+  std::function<void(int level, const std::string& text)> on_log;
+};
+
+class Engine {
+ public:
+  Engine(RelayConfig cfg, Callbacks cb, Counters& counters);
+  ~Engine();
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+  void start();
+  void stop();
+  // A local message on out-topic `index`; the type is checked against the configuration.
+  void publish(std::size_t index, const TypeInfo& info, Bytes data);
+  std::vector<PeerStatus> status();
+  int listenPort() const { return listen_port_; }
+  const RelayConfig& config() const { return cfg_; }
+
+ private:
+  struct Conn;
+  struct Peer;
+  struct Delivery;
+  void run();
+  void acceptOne();
+  void dial(Peer& p, double now);
+  void closeConn(Conn& c, const std::string& why);
+  void onReadable(Conn& c, double now, std::vector<Delivery>& out);
+  void handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& out);
+  void establish(Conn& c, double now);
+  void sendFrame(Conn& c, FrameHeader h, const std::uint8_t* p, std::size_t n);
+  void sendHello(Conn& c);
+  void sendAnnounce(Conn& c, std::size_t index);
+  void pump(Peer& p);
+  void sendAcks(double now);
+  void flush(Conn& c);
+  void log(int level, const std::string& s);
+  bool goesTo(const TopicConfig& t, const std::string& peer) const;
+
+  RelayConfig cfg_;
+  Callbacks cb_;
+  Counters& counters_;
+  Authenticator psk_;
+  std::uint64_t session_;
+  int listen_fd_ = -1, listen_port_ = 0, wake_fd_ = -1;
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<Peer>> peers_;
+  std::vector<std::unique_ptr<Conn>> conns_;
+  std::vector<TypeInfo> out_types_;             // per topic index: type seen locally
+  std::vector<Bytes> latched_;                  // per topic index: last message (latched topics)
+  std::vector<std::uint8_t> latched_flags_;
+  std::atomic<bool> running_{false};
+  std::thread thread_;
+};
+
+}  // namespace relay
+}  // namespace offshore_gnc

@@ -1,0 +1,38 @@
+#pragma once
+// USV navigation from the GPS-compass (simulation and hardware alike): WGS84 fix + heading -> local NED pose,
+// body velocity from successive fixes (low-pass filtered). ROS-free; the GpsNavigation nodelet wraps it.
+#include <optional>
+
+#include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/models/state.h"
+
+namespace offshore_gnc {
+namespace sim {
+
+struct GpsNavigatorConfig {
+  Eigen::Vector3d antenna{0, 0, -2.5};  // antenna in body FRD [m], removed from the fix
+  double heading_timeout = 1.0;         // a fix needs a heading at most this old [s]
+  double velocity_filter = 0.5;         // first-order filter time constant on the velocity [s]
+};
+
+class GpsNavigator {
+ public:
+  GpsNavigator(const geo::LatLonAlt& origin, const GpsNavigatorConfig& cfg);
+  // Heading (NED yaw) at time t; false and counted when not finite.
+  bool heading(double t, double yaw);
+  // A fix at time t: the new state estimate, or nothing (counted) when the fix is unusable or no recent heading.
+  std::optional<VehicleState> fix(double t, const geo::LatLonAlt& p);
+  const Counters& counters() const { return counters_; }
+  const geo::LocalNed& frame() const { return frame_; }
+
+ private:
+  geo::LocalNed frame_;
+  GpsNavigatorConfig cfg_;
+  double heading_t_ = -1e300, yaw_ = 0.0, yaw_rate_ = 0.0;
+  std::optional<VehicleState> last_;
+  Counters counters_;
+};
+
+}  // namespace sim
+}  // namespace offshore_gnc

@@ -1,0 +1,202 @@
+#pragma once
+// Sensor simulators: each produces what the real sensor's driver would emit, from the vehicle's true state
+// and the world. Deterministic for a given seed (one std::mt19937_64 per sensor). ROS-free, NED / body FRD.
+#include <Eigen/Core>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/models/state.h"
+#include "offshore_gnc/sim/world.h"
+
+namespace offshore_gnc {
+namespace sim {
+
+// ---------------------------------------------------------------- GPS-compass (USV)
+struct GpsCompassConfig {
+  double rate_hz = 10.0;
+  double position_sigma = 0.3;    // horizontal 1-sigma [m] (SBAS-class dual-antenna GPS-compass)
+  double altitude_sigma = 0.5;    // [m]
+  double heading_sigma = deg2rad(0.2);  // [rad]
+  Eigen::Vector3d antenna{0, 0, -2.5};  // antenna in body FRD [m]
+};
+struct GpsCompassReading {
+  double t;
+  geo::LatLonAlt fix;
+  double heading;  // NED yaw of the vessel [rad], wrapped to (-pi, pi]
+  double position_sigma, heading_sigma;
+};
+class GpsCompass {
+ public:
+  GpsCompass(const GpsCompassConfig& cfg, const geo::LocalNed& frame, std::uint64_t seed);
+  GpsCompassReading measure(const VehicleState& s);
+  const GpsCompassConfig& config() const { return cfg_; }
+
+ private:
+  GpsCompassConfig cfg_;
+  geo::LocalNed frame_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> n_{0.0, 1.0};
+};
+
+// ---------------------------------------------------------------- LiDAR (SICK MRS1000-like)
+struct LidarConfig {
+  double rate_hz = 12.5;
+  int layers = 4;
+  std::vector<double> layer_elevation{deg2rad(-2.5), 0.0, deg2rad(2.5), deg2rad(5.0)};  // 7.5 deg in all
+  double aperture = deg2rad(275.0);
+  double step = deg2rad(0.25);
+  double min_range = 0.2, max_range = 64.0;
+  double range_sigma = 0.03;    // [m]
+  Eigen::Vector3d mount{1.5, 0.0, -1.0};  // sensor in body FRD [m]: on the bow, 1 m above the waterline
+  double mount_yaw = 0.0;
+};
+// One frame: ranges[layer * beams + beam], NaN = no return. Beam b's azimuth (clockwise, sensor frame) is
+// -aperture/2 + b * step; layer elevation positive = up.
+struct LidarScan {
+  double t = 0.0;
+  int layers = 0, beams = 0;
+  std::vector<float> ranges;
+  std::vector<double> azimuth, elevation;
+  // Point of one return in the sensor frame, FRD (x forward, y starboard, z down).
+  Eigen::Vector3d pointFrd(int layer, int beam) const;
+};
+class Lidar {
+ public:
+  Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed);
+  // Scans the world from the vehicle's state (yaw only: the USV model is 3-DOF). Reuses `out`'s storage.
+  void scan(const VehicleState& s, LidarScan& out);
+  const LidarConfig& config() const { return cfg_; }
+  int beams() const { return beams_; }
+
+ private:
+  LidarConfig cfg_;
+  World world_;
+  int beams_;
+  RayScene scene_;
+  std::vector<Hit2d> hits_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> n_{0.0, 1.0};
+};
+
+// ---------------------------------------------------------------- Mechanical imaging sonar (Micron-like)
+struct SonarConfig {
+  double ping_rate_hz = 20.0;    // beams per second at 10 m range
+  double step = deg2rad(1.8);
+  double sector = deg2rad(90.0);  // centred on the head's forward axis
+  double range = 10.0;
+  int bins = 200;
+  double beam_width = deg2rad(3.0);  // horizontal
+  double vertical_width = deg2rad(35.0);
+  double near_field = 1.5;       // clutter from the vehicle structure inside this range [m]
+  double noise_level = 12.0;     // mean speckle intensity
+  Eigen::Vector3d mount{0.6, 0.0, -0.2};  // head in body FRD [m]
+};
+struct SonarBeamReading {
+  double t = 0.0;
+  double bearing = 0.0;  // head angle, clockwise from forward, [0, 2 pi)
+  double beam_width = 0.0, range_resolution = 0.0, range_offset = 0.0;
+  std::uint16_t head_status = 0;  // SonarBeam.msg STATUS_* bits
+  std::vector<std::uint8_t> intensities;
+};
+// SonarBeam.msg status bits, repeated here so the core does not include generated messages.
+enum SonarStatus : std::uint16_t {
+  kHeadReady = 1, kMotorOn = 2, kCentring = 4, kScanCw = 8, kSectorReverse = 16, kFault = 32
+};
+class Sonar {
+ public:
+  Sonar(const SonarConfig& cfg, const World& world, std::uint64_t seed);
+  // Next beam: the head steps, pings, and the echoes of targets and walls are drawn into the bins.
+  void ping(const VehicleState& s, SonarBeamReading& out);
+  const SonarConfig& config() const { return cfg_; }
+  int binOfRange(double r) const;
+
+ private:
+  SonarConfig cfg_;
+  World world_;
+  double angle_;  // signed head angle, (-sector/2 .. sector/2)
+  int direction_ = 1;
+  bool reversed_ = false;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> n_{0.0, 1.0};
+  std::uniform_real_distribution<double> u_{0.0, 1.0};
+};
+
+// ---------------------------------------------------------------- AUV depth and AHRS
+struct DepthConfig {
+  double rate_hz = 10.0;
+  double sigma_pa = 20.0;          // ~2 mm of water
+  double atmosphere_pa = 101325.0;
+  double water_density = 1000.0;   // fresh water (Pyhäjärvi); 1025 at sea
+};
+struct DepthReading {
+  double t, pressure_pa, sigma_pa;
+};
+class DepthSensor {
+ public:
+  DepthSensor(const DepthConfig& cfg, std::uint64_t seed);
+  DepthReading measure(const VehicleState& s);
+  double depthOf(double pressure_pa) const;
+  const DepthConfig& config() const { return cfg_; }
+
+ private:
+  DepthConfig cfg_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> n_{0.0, 1.0};
+};
+
+struct AhrsConfig {
+  double rate_hz = 50.0;
+  double attitude_sigma = deg2rad(0.2);  // roll, pitch [rad]
+  double heading_sigma = deg2rad(0.5);  // yaw [rad] (magnetic compass)
+  double gyro_sigma = 0.002;       // [rad/s]
+  double accel_sigma = 0.02;       // [m/s^2]
+};
+struct AhrsReading {
+  double t;
+  double roll, pitch, yaw;           // NED / FRD Euler angles [rad]
+  Eigen::Vector3d angular_rate;      // body FRD [rad/s]
+  Eigen::Vector3d specific_force;    // body FRD, includes gravity reaction (-g on z at rest) [m/s^2]
+  double attitude_sigma, heading_sigma, gyro_sigma, accel_sigma;
+};
+class Ahrs {
+ public:
+  Ahrs(const AhrsConfig& cfg, std::uint64_t seed);
+  // `accel_body` is the body-frame linear acceleration of the vehicle (from the model, or finite differences).
+  AhrsReading measure(const VehicleState& s, const Eigen::Vector3d& accel_body);
+  const AhrsConfig& config() const { return cfg_; }
+
+ private:
+  AhrsConfig cfg_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> n_{0.0, 1.0};
+};
+
+// ---------------------------------------------------------------- AUV navigation estimate (simulation only)
+// Stands in for a DVL-aided INS (e.g. COLA2's navigator on Girona500): ground truth plus white noise and a
+// horizontal random-walk drift, the error such a filter shows between USBL fixes. Simulation only.
+struct InsConfig {
+  double position_sigma = 0.05;    // white noise [m]
+  double drift_per_sqrt_s = 0.02;  // horizontal random walk [m / sqrt(s)]
+  double depth_sigma = 0.02;       // [m]
+  double yaw_sigma = deg2rad(0.5);
+  double velocity_sigma = 0.01;    // [m/s]
+};
+class InsEstimate {
+ public:
+  InsEstimate(const InsConfig& cfg, std::uint64_t seed);
+  VehicleState estimate(const VehicleState& truth);
+  Eigen::Vector2d drift() const { return drift_; }
+
+ private:
+  InsConfig cfg_;
+  Eigen::Vector2d drift_{0, 0};
+  double last_t_ = -1.0;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> n_{0.0, 1.0};
+};
+
+}  // namespace sim
+}  // namespace offshore_gnc

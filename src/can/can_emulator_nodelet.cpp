@@ -1,0 +1,147 @@
+// CanEmulator: the USV's bus devices in simulation, on a real (v)can interface: the two waterjet control
+// units (answer the gateway's commands with status frames) and the GPS-compass (NMEA 2000 from the
+// simulator's ground truth). With it, simulated commands travel the same CAN path as on the boat.
+//   in:  /usv/ground_truth/odom (nav_msgs/Odometry, map ENU / usv/base_link)
+//   out: waterjet/applied_cmd (JoystickCommand the units act on; a simulator can take it instead of joystick_cmd)
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <nav_msgs/Odometry.h>
+#include <nodelet/nodelet.h>
+#include <offshore_gnc/JoystickCommand.h>
+#include <pluginlib/class_list_macros.hpp>
+#include <ros/ros.h>
+#include <tf2/utils.h>
+
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "offshore_gnc/can/emulator.h"
+#include "offshore_gnc/can/gateway.h"
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/ros/diagnostics.h"
+#include "offshore_gnc/ros/params.h"
+
+namespace offshore_gnc {
+
+class CanEmulatorNodelet : public nodelet::Nodelet {
+  void onInit() override {
+    ros::NodeHandle& nh = getNodeHandle();
+    ros_util::ParamReader p(getPrivateNodeHandle());
+    can::SocketCanOptions bus;
+    can::WaterjetModel model;
+    can::jet::Addresses addr;
+    geo::LatLonAlt origin;
+    double rate = 10.0;
+    try {
+      bus.iface = p.text("interface", "vcan0");
+      bus.auto_restart = false;  // a simulated device never restarts the controller
+      rate = p.number("rate", 10.0, 1.0, 100.0);
+      model.idle_rpm = p.number("waterjet/idle_rpm", model.idle_rpm, 0.0, 3000.0);
+      model.max_rpm = p.number("waterjet/max_rpm", model.max_rpm, model.idle_rpm, can::jet::kMaxRpm);
+      model.rpm_time_constant = p.number("waterjet/rpm_time_constant", model.rpm_time_constant, 0.01, 10.0);
+      model.command_timeout = p.number("waterjet/command_timeout", model.command_timeout, 0.05, 10.0);
+      addr.gateway = static_cast<std::uint8_t>(p.integer("address/gateway", 0x20, 0, 253));
+      addr.bridge = static_cast<std::uint8_t>(p.integer("address/bridge", 0x10, 0, 253));
+      addr.jet_base = static_cast<std::uint8_t>(p.integer("address/jet_base", 0x30, 0, 252));
+      gps_address_ = static_cast<std::uint8_t>(p.integer("address/gps", 0x40, 0, 253));
+      origin.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
+      origin.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
+    } catch (const ConfigError& e) {
+      NODELET_FATAL("%s", e.what());
+      throw;
+    }
+    local_ = std::make_unique<geo::LocalNed>(origin);
+    bus_ = std::make_unique<can::SocketCan>(bus, counters_);
+    if (!bus_->open()) NODELET_WARN("%s (retrying)", bus_->lastError().c_str());
+    jets_ = std::make_unique<can::WaterjetEmulator>(model, addr, counters_);
+    gps_ = std::make_unique<can::GpsCompassEmulator>(gps_address_);
+
+    applied_pub_ = nh.advertise<offshore_gnc::JoystickCommand>("waterjet/applied_cmd", 10);
+    odom_sub_ = nh.subscribe("ground_truth/odom", 10, &CanEmulatorNodelet::onOdom, this);
+    updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
+    updater_->setHardwareID("can-emulator:" + bus.iface);
+    updater_->add("can emulator", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+      std::lock_guard<std::mutex> l(mutex_);
+      const can::BusState st = bus_->state();
+      s.summary(st == can::BusState::kErrorActive ? diagnostic_msgs::DiagnosticStatus::OK
+                                                  : diagnostic_msgs::DiagnosticStatus::ERROR,
+                std::string("bus ") + can::toString(st));
+      ros_util::addCounters(s, counters_, {"bad_checksum", "out_of_range", "counter_jumps", "odom_invalid"});
+    });
+    // The bus runs on wall time like the hardware it stands for; devices answer at `rate`.
+    period_ = 1.0 / rate;
+    timer_ = nh.createWallTimer(ros::WallDuration(0.01), [this](const ros::WallTimerEvent&) { spin(); });
+    diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
+    NODELET_INFO("CAN emulator on %s: waterjets 0x%02X/0x%02X, GPS-compass 0x%02X at %.1f Hz", bus.iface.c_str(),
+                 addr.jet_base, addr.jet_base + 1, gps_address_, rate);
+  }
+
+  void onOdom(const nav_msgs::Odometry::ConstPtr& m) {
+    const auto& q = m->pose.pose.orientation;
+    const auto& pos = m->pose.pose.position;
+    const double yaw_enu = tf2::getYaw(q);
+    if (!std::isfinite(pos.x) || !std::isfinite(pos.y) || !std::isfinite(yaw_enu) ||
+        !std::isfinite(m->twist.twist.linear.x) || !std::isfinite(m->twist.twist.linear.y)) {
+      counters_.increment("odom_invalid");
+      NODELET_ERROR_THROTTLE(5.0, "ground truth odometry not finite: ignored");
+      return;
+    }
+    can::GpsCompassSample s;
+    const geo::LatLonAlt g = local_->toGeodetic(geo::enuToNed(Eigen::Vector3d(pos.x, pos.y, pos.z)));
+    s.lat_deg = g.lat_deg;
+    s.lon_deg = g.lon_deg;
+    s.heading_rad = wrapTwoPi(geo::enuYawToNed(yaw_enu));
+    // Odometry twist is in the body frame (x forward, y left): rotate into ENU, then NED course.
+    const double vx = m->twist.twist.linear.x, vy = m->twist.twist.linear.y;
+    const double ve = vx * std::cos(yaw_enu) - vy * std::sin(yaw_enu);
+    const double vn = vx * std::sin(yaw_enu) + vy * std::cos(yaw_enu);
+    s.sog_mps = std::hypot(ve, vn);
+    s.cog_rad = wrapTwoPi(std::atan2(ve, vn));
+    std::lock_guard<std::mutex> l(mutex_);
+    sample_ = s;
+  }
+
+  void spin() {
+    std::lock_guard<std::mutex> l(mutex_);
+    const double t = can::CanGateway::now();
+    bus_->poll(t);
+    for (const auto& f : bus_->receive(t)) jets_->onFrame(f, t);
+    if (t < next_) return;
+    next_ = t + period_;
+    for (const auto& f : jets_->step(t)) bus_->send(f);
+    if (sample_)
+      for (const auto& f : gps_->frames(*sample_)) bus_->send(f);
+    bus_->flush();
+    const can::jet::Command& c = jets_->applied();
+    offshore_gnc::JoystickCommand m;
+    m.header.stamp = ros::Time::now();
+    const bool fault = jets_->jets()[0].faults != 0;
+    m.surge = fault ? 0.0 : c.surge;
+    m.sway = fault ? 0.0 : c.sway;
+    m.yaw = fault ? 0.0 : c.yaw;
+    m.source = c.source;
+    m.priority = c.source >= can::kJoystick ? offshore_gnc::JoystickCommand::PRIORITY_MANUAL
+                                            : offshore_gnc::JoystickCommand::PRIORITY_AUTONOMY;
+    applied_pub_.publish(m);
+  }
+
+  Counters counters_;
+  std::mutex mutex_;
+  std::unique_ptr<geo::LocalNed> local_;
+  std::unique_ptr<can::SocketCan> bus_;
+  std::unique_ptr<can::WaterjetEmulator> jets_;
+  std::unique_ptr<can::GpsCompassEmulator> gps_;
+  std::optional<can::GpsCompassSample> sample_;
+  std::uint8_t gps_address_ = 0x40;
+  double period_ = 0.1, next_ = 0.0;
+  ros::Publisher applied_pub_;
+  ros::Subscriber odom_sub_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer timer_, diag_timer_;
+};
+
+}  // namespace offshore_gnc
+
+PLUGINLIB_EXPORT_CLASS(offshore_gnc::CanEmulatorNodelet, nodelet::Nodelet)

@@ -1,0 +1,59 @@
+// libFuzzer target: arbitrary frames (4 bytes id + flags, 1 byte length, payload) through the NMEA 2000 and
+// waterjet decoders, the bus-state monitor, the gateway policy and the waterjet emulator. Outputs must stay
+// finite and in range. Built by scripts/can-fuzz.sh.
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "offshore_gnc/can/emulator.h"
+#include "offshore_gnc/can/gateway.h"
+#include "offshore_gnc/can/nmea2000.h"
+#include "offshore_gnc/can/socket_can.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::can;
+
+namespace {
+void check(bool ok) {
+  if (!ok) __builtin_trap();
+}
+bool finiteIn(const std::optional<double>& v, double lo, double hi) { return !v || (std::isfinite(*v) && *v >= lo && *v <= hi); }
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static Counters counters;
+  static WaterjetEmulator emu(WaterjetModel{}, {}, counters);
+  static GatewayPolicy policy(GatewayConfig{}, counters);
+  static BusMonitor monitor(counters);
+  static double t = 0.0;
+  if (size < 5) return 0;
+  CanFrame f;
+  std::uint32_t head;
+  std::memcpy(&head, data, 4);
+  f.extended = head & 0x80000000U;
+  f.error = head & 0x20000000U;
+  f.fd = head & 0x40000000U;
+  f.id = head & (f.extended ? 0x1FFFFFFFU : 0x7FFU);
+  f.len = static_cast<std::uint8_t>(std::min<std::size_t>({data[4], size - 5, f.fd ? 64U : 8U}));
+  std::memcpy(f.data.data(), data + 5, f.len);
+  t += 0.01;
+  if (auto p = n2k::decodePositionRapid(f)) check(finiteIn(p->lat_deg, -90, 90) && finiteIn(p->lon_deg, -180, 180));
+  if (auto h = n2k::decodeVesselHeading(f))
+    check(finiteIn(h->heading_rad, 0, 2 * M_PI) && finiteIn(h->deviation_rad, -M_PI, M_PI) &&
+          finiteIn(h->variation_rad, -M_PI, M_PI));
+  if (auto c = n2k::decodeCogSogRapid(f)) check(finiteIn(c->cog_rad, 0, 2 * M_PI) && finiteIn(c->sog_mps, 0, 655.35));
+  jet::Command cmd;
+  bool manual = false;
+  if (jet::decodeCommand(f, cmd, &manual) == jet::Error::kNone) {
+    check(std::abs(cmd.surge) <= 1 && std::abs(cmd.sway) <= 1 && std::abs(cmd.yaw) <= 1 && cmd.source <= 4);
+    if (manual) policy.onManual(cmd, t);
+    else policy.onAutonomy(cmd.surge, cmd.sway, cmd.yaw, t);
+  }
+  jet::Status st;
+  if (jet::decodeStatus(f, st) == jet::Error::kNone) check(st.rpm >= 0 && st.rpm <= jet::kMaxRpm && std::abs(st.nozzle) <= 1);
+  if (f.error) monitor.onErrorFrame(f);
+  emu.onFrame(f, t);
+  for (const auto& out : emu.step(t)) check(jet::decodeStatus(out, st) == jet::Error::kNone && std::isfinite(st.rpm));
+  if (auto out = policy.tick(t)) check(jet::decodeCommand(*out, cmd) == jet::Error::kNone);
+  return 0;
+}

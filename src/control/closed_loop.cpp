@@ -1,0 +1,131 @@
+#include "offshore_gnc/control/closed_loop.h"
+
+#include <cmath>
+
+#include "offshore_gnc/sim/simulation.h"
+
+namespace offshore_gnc {
+namespace control {
+
+Reference toReference(const guidance::LosOutput& o) {
+  Reference r;
+  r.heading = o.desired_heading;
+  r.surge = o.desired_surge;
+  r.depth = o.desired_depth;
+  r.path_angle = o.path_angle;
+  switch (o.mode) {
+    case guidance::Mode::kFollowPath:
+      r.mode = RefMode::kFollow;
+      r.point = o.path_point;
+      break;
+    case guidance::Mode::kStationKeeping:
+    case guidance::Mode::kHoldFault:
+      r.mode = RefMode::kHold;
+      r.point = o.hold_position;
+      break;
+    default:
+      r.mode = RefMode::kIdle;
+  }
+  return r;
+}
+
+namespace {
+
+sim::Scenario scenarioOf(const ClosedLoopConfig& cfg) {
+  sim::Scenario sc;
+  sc.name = "closed_loop";
+  sc.current.north = cfg.current.x();
+  sc.current.east = cfg.current.y();
+  sc.current.variation = 0.0;
+  sc.usv = {cfg.start.x(), cfg.start.y(), cfg.start_yaw};
+  sc.auv = {cfg.start.x(), cfg.start.y(), cfg.start.z(), cfg.start_yaw};
+  for (const auto& o : cfg.obstacles) {
+    sim::Buoy b;
+    b.centre = o.origin;
+    b.radius = std::max(o.length, o.width) / 2.0;
+    sc.world.buoys.push_back(b);
+  }
+  return sc;
+}
+
+// Shared loop: `step(state, ref)` applies the controller and advances the plant one control period.
+template <typename Plant, typename Apply>
+ClosedLoopResult run(const ClosedLoopConfig& cfg, Plant& plant, Apply apply) {
+  ClosedLoopResult res;
+  guidance::LosGuidance los(cfg.los);
+  std::vector<Eigen::Vector3d> path = cfg.path;
+  std::vector<guidance::SbbBox> boxes;
+  if (!cfg.obstacles.empty()) {
+    const auto plan = guidance::planSbb(cfg.path, cfg.start.head<2>(), cfg.obstacles, cfg.sbb);
+    path = plan.path;
+    boxes = plan.boxes;
+    res.status = plan.status;
+  }
+  res.planned_path = path;
+  los.setPath(path);
+  const int sub = std::max(1, static_cast<int>(std::lround(cfg.control_dt / plant.dt())));
+  std::vector<double> xte;
+  double finished_at = -1.0;
+  for (double t = 0.0; t < cfg.max_time; t += cfg.control_dt) {
+    const VehicleState s = plant.state();  // velocity over ground, as GPS / DVL navigation reports it
+    const guidance::LosOutput o = los.update(s, cfg.control_dt);
+    if (o.mode == guidance::Mode::kFollowPath) xte.push_back(o.cross_track_error);
+    if (o.mode == guidance::Mode::kStationKeeping && finished_at < 0.0) finished_at = t;
+    res.track.push_back(s.position);
+    for (const auto& ob : cfg.obstacles)
+      res.min_clearance = std::min(
+          res.min_clearance, (s.position.head<2>() - ob.origin).norm() - std::max(ob.length, ob.width) / 2.0);
+    for (const auto& b : boxes)
+      if (b.cuts_path && b.contains(s.position.head<2>())) ++res.inside_box_samples;
+    if (!apply(s, toReference(o))) ++res.nan_outputs;
+    for (int i = 0; i < sub; ++i) plant.step();
+    if (finished_at >= 0.0 && t - finished_at >= 60.0) {
+      const Eigen::Vector3d d = plant.state().position - path.back();
+      res.hold_error = d.head<2>().norm();
+      break;
+    }
+  }
+  res.finished = finished_at >= 0.0;
+  res.time = finished_at;
+  res.metrics = guidance::computeMetrics(xte);
+  if (res.status.empty()) res.status = res.finished ? "finished" : "timeout";
+  return res;
+}
+
+}  // namespace
+
+ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const UsvControlParams& ctrl_p) {
+  sim::UsvSimulation::Config sc;
+  sc.seed = cfg.seed;
+  sc.lidar_on = false;
+  sim::UsvSimulation plant(scenarioOf(cfg), sc);
+  UsvControlParams p = ctrl_p;
+  p.dt = cfg.control_dt;
+  UsvController ctrl(p);
+  return run(cfg, plant, [&](const VehicleState& s, const Reference& r) {
+    const JoystickOut j = ctrl.update(s, r);
+    const bool finite = std::isfinite(j.surge) && std::isfinite(j.sway) && std::isfinite(j.yaw);
+    plant.setCommand(models::UsvCommand{j.surge, j.sway, j.yaw});
+    return finite;
+  });
+}
+
+ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg, const Girona500ControlParams& ctrl_p) {
+  sim::AuvSimulation::Config sc;
+  sc.seed = cfg.seed;
+  sc.sonar_on = false;
+  sim::AuvSimulation plant(scenarioOf(cfg), sc);
+  Girona500ControlParams p = ctrl_p;
+  p.dt = cfg.control_dt;
+  Girona500Controller ctrl(p);
+  return run(cfg, plant, [&](const VehicleState& s, const Reference& r) {
+    const Girona500Out out = ctrl.update(s, r);
+    const auto& sp = out.alloc.setpoint;
+    const bool finite = sp.allFinite();
+    plant.setThrusters(std::vector<double>(sp.data(), sp.data() + sp.size()));
+    return finite;
+  });
+}
+
+}  // namespace control
+}  // namespace offshore_gnc

@@ -1,0 +1,232 @@
+#include "offshore_gnc/control/vehicle_control.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/models/auv.h"
+
+namespace offshore_gnc {
+namespace control {
+namespace {
+
+bool stateFinite(const VehicleState& s) {
+  return s.position.allFinite() && s.velocity.allFinite() && s.angular_rate.allFinite() && std::isfinite(s.yaw);
+}
+
+double clamp1(double v) { return std::isfinite(v) ? std::clamp(v, -1.0, 1.0) : 0.0; }
+
+// Body (x forward, y starboard) components of a NED horizontal vector.
+Eigen::Vector2d toBody(const Eigen::Vector2d& ned, double yaw) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  return {c * ned.x() + s * ned.y(), -s * ned.x() + c * ned.y()};
+}
+
+}  // namespace
+
+bool Reference::valid() const {
+  return std::isfinite(heading) && std::isfinite(surge) && point.head<2>().allFinite() &&
+         std::isfinite(path_angle);
+}
+
+void UsvControlParams::validate() const {
+  surge.validate("surge");
+  yaw.validate("yaw");
+  requirePositive("max_surge_force", max_surge_force);
+  filter.validate();
+  requireRange("dp_speed_gain", dp_speed_gain, 0.0, 10.0);
+  requireRange("dp_max_speed", dp_max_speed, 0.0, 10.0);
+  requireRange("dp_sway_gain", dp_sway_gain, 0.0, 100.0);
+  requireRange("dp_radius", dp_radius, 0.0, 1000.0);
+  requireRange("dt", dt, 1e-3, 10.0);
+}
+
+UsvController::UsvController(const UsvControlParams& p) { setParams(p); }
+
+void UsvController::setParams(const UsvControlParams& p) {
+  p.validate();
+  const bool refilter = p.filter.tf != p_.filter.tf || p.filter.xi != p_.filter.xi ||
+                        p.filter.notch_w != p_.filter.notch_w || p.dt != p_.dt || !f_u_.primed();
+  p_ = p;
+  surge_.setGains(p.surge);
+  yaw_.setGains(p.yaw);
+  if (refilter) {
+    f_u_ = FeedbackFilter(p.filter, p.dt);
+    f_yaw_ = FeedbackFilter(p.filter, p.dt);
+    primed_ = false;
+  }
+}
+
+JoystickOut UsvController::update(const VehicleState& s, const Reference& r) {
+  JoystickOut out;
+  if (!stateFinite(s)) {
+    counters_.increment("nan_state");
+    return out;
+  }
+  if (!r.valid()) {
+    counters_.increment("bad_reference");
+    return out;
+  }
+  // Unwrapped heading so the filters never see the +-pi jump.
+  if (!primed_) {
+    yaw_unwrapped_ = s.yaw;
+    f_yaw_.reset(s.yaw);
+    f_u_.reset(s.velocity.x());
+    u_f_prev_ = s.velocity.x();
+    primed_ = true;
+  } else {
+    yaw_unwrapped_ += angleDiff(s.yaw, yaw_prev_);
+  }
+  yaw_prev_ = s.yaw;
+  yaw_f_ = wrapAngle(f_yaw_.step(yaw_unwrapped_));
+  const double u_f = f_u_.step(s.velocity.x());
+  const double du = (u_f - u_f_prev_) / p_.dt;
+  u_f_prev_ = u_f;
+  if (r.mode == RefMode::kIdle) {
+    surge_.reset();
+    yaw_.reset();
+    return out;
+  }
+  double u_ref = r.surge;
+  double heading = r.heading;
+  if (r.mode == RefMode::kHold) {
+    // Waterjets give little sway: away from the point, point the bow at it and drive back.
+    const Eigen::Vector2d d_ned = r.point.head<2>() - s.position.head<2>();
+    if (d_ned.norm() > p_.dp_radius) heading = std::atan2(d_ned.y(), d_ned.x());
+    const Eigen::Vector2d err = toBody(d_ned, s.yaw);
+    u_ref = std::clamp(p_.dp_speed_gain * err.x(), -p_.dp_max_speed, p_.dp_max_speed);
+    const double v_ref = std::clamp(p_.dp_speed_gain * err.y(), -p_.dp_max_speed, p_.dp_max_speed);
+    out.sway = clamp1(p_.dp_sway_gain * (v_ref - s.velocity.y()));
+  }
+  out.surge = clamp1(surge_.update(u_ref - u_f, -du, p_.dt) / p_.max_surge_force);
+  out.yaw = clamp1(yaw_.update(angleDiff(heading, yaw_f_), -s.angular_rate.z(), p_.dt));
+  return out;
+}
+
+void AcolorControlParams::validate() const {
+  yaw.validate("yaw");
+  heave.validate("heave");
+  requireRange("surge_pwm", surge_pwm, 1100.0, 1900.0);
+  requireRange("num_channels", num_channels, 1, 18);
+  requireRange("channel_heave", channel_heave, 1, num_channels);
+  requireRange("channel_yaw", channel_yaw, 1, num_channels);
+  requireRange("channel_surge", channel_surge, 1, num_channels);
+  requireRange("dt", dt, 1e-3, 10.0);
+}
+
+AcolorController::AcolorController(const AcolorControlParams& p) { setParams(p); }
+
+void AcolorController::setParams(const AcolorControlParams& p) {
+  p.validate();
+  p_ = p;
+  yaw_.setGains(p.yaw);
+  heave_.setGains(p.heave);
+}
+
+std::uint16_t AcolorController::pwm(double normalised) {
+  return static_cast<std::uint16_t>(std::lround(1500.0 + 400.0 * clamp1(normalised)));
+}
+
+std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const Reference& r) {
+  std::vector<std::uint16_t> ch(p_.num_channels, 1500);
+  if (!stateFinite(s) || !r.valid() || (r.mode != RefMode::kIdle && !std::isfinite(r.depth))) {
+    counters_.increment(stateFinite(s) ? "bad_reference" : "nan_state");
+    return ch;  // neutral on every channel
+  }
+  if (r.mode == RefMode::kIdle) {
+    yaw_.reset();
+    heave_.reset();
+    return ch;
+  }
+  const double yaw_cmd = yaw_.update(angleDiff(r.heading, s.yaw), -s.angular_rate.z(), p_.dt);
+  // Heave: positive = thrust down (deeper), as PWM above neutral.
+  const double heave_us = heave_.update(r.depth - s.position.z(), -s.velocity.z(), p_.dt);
+  ch[p_.channel_yaw - 1] = pwm(yaw_cmd);
+  ch[p_.channel_heave - 1] = pwm(heave_us / 400.0);
+  // Constant surge while following; the aColor cannot hold station horizontally, it stops and holds depth.
+  ch[p_.channel_surge - 1] =
+      r.mode == RefMode::kFollow ? static_cast<std::uint16_t>(std::lround(p_.surge_pwm)) : 1500;
+  return ch;
+}
+
+Girona500ControlParams::Girona500ControlParams() {
+  // The vehicle model's geometry (eq. 3.18) and thruster curves: allocation inverts what the plant does.
+  const models::AuvParams g = models::AuvParams::girona500();
+  tcm = g.tcm();
+  max_thrust.resize(g.thrusters.size());
+  for (std::size_t i = 0; i < g.thrusters.size(); ++i) {  // symmetric limit: the weaker direction
+    const auto& t = g.thrusters[i];
+    max_thrust[i] = std::min(std::abs(t.curve_thrust.front()), std::abs(t.curve_thrust.back()));
+  }
+  auto model = std::make_shared<const models::AuvModel>(g);
+  command_for = [model](int i, double f) { return model->commandFor(i, f); };
+}
+
+void Girona500ControlParams::validate() const {
+  north.validate("north");
+  east.validate("east");
+  down.validate("down");
+  yaw.validate("yaw");
+  requireRange("lead", lead, 0.0, 100.0);
+  requireRange("cross_ki", cross_ki, 0.0, 10.0);
+  requireRange("cross_limit", cross_limit, 0.0, 100.0);
+  requireRange("dt", dt, 1e-3, 10.0);
+  if (tcm.rows() != 4) throw ConfigError("parameter 'tcm' must have 4 rows (X, Y, Z, N)");
+}
+
+Girona500Controller::Girona500Controller(const Girona500ControlParams& p) { setParams(p); }
+
+void Girona500Controller::setParams(const Girona500ControlParams& p) {
+  p.validate();
+  alloc_ = ThrustAllocator(p.tcm, p.max_thrust, p.command_for);
+  p_ = p;
+  n_.setGains(p.north);
+  e_.setGains(p.east);
+  d_.setGains(p.down);
+  yaw_.setGains(p.yaw);
+}
+
+Girona500Out Girona500Controller::update(const VehicleState& s, const Reference& r) {
+  Girona500Out out;
+  const bool ok = stateFinite(s) && r.valid() && (r.mode == RefMode::kIdle || std::isfinite(r.depth));
+  if (!ok || r.mode == RefMode::kIdle) {
+    if (!ok) counters_.increment(stateFinite(s) ? "bad_reference" : "nan_state");
+    n_.reset();
+    e_.reset();
+    d_.reset();
+    yaw_.reset();
+    cross_offset_ = 0.0;
+    out.alloc = alloc_.allocate(Eigen::Vector4d::Zero());
+    return out;
+  }
+  Eigen::Vector3d target(r.point.x(), r.point.y(), r.depth);
+  Eigen::Vector2d v_ref = Eigen::Vector2d::Zero();
+  if (r.mode == RefMode::kFollow) {
+    // The reference slides along the leg at u_d: derivative of the error, not of the measurement, so the D
+    // term damps the motion relative to the reference instead of braking the transit.
+    const Eigen::Vector2d u(std::cos(r.path_angle), std::sin(r.path_angle)), v(-u.y(), u.x());
+    const double e_cross = (s.position.head<2>() - r.point.head<2>()).dot(v);
+    cross_offset_ = std::clamp(cross_offset_ - p_.cross_ki * e_cross * p_.dt, -p_.cross_limit, p_.cross_limit);
+    target.head<2>() += p_.lead * u + cross_offset_ * v;
+    v_ref = r.surge * u;
+  } else {
+    cross_offset_ = 0.0;
+  }
+  const double c = std::cos(s.yaw), sn = std::sin(s.yaw);
+  // Ground velocity in NED (the navigation's body-frame velocity over ground rotated by yaw).
+  const Eigen::Vector2d v_ned(c * s.velocity.x() - sn * s.velocity.y(), sn * s.velocity.x() + c * s.velocity.y());
+  const Eigen::Vector3d err = target - s.position;
+  const double fn = n_.update(err.x(), v_ref.x() - v_ned.x(), p_.dt);
+  const double fe = e_.update(err.y(), v_ref.y() - v_ned.y(), p_.dt);
+  const double fd = d_.update(err.z(), -s.velocity.z(), p_.dt);
+  const double tn = yaw_.update(angleDiff(r.heading, s.yaw), -s.angular_rate.z(), p_.dt);
+  const Eigen::Vector2d fb = toBody(Eigen::Vector2d(fn, fe), s.yaw);
+  out.tau << fb.x(), fb.y(), fd, tn;
+  out.alloc = alloc_.allocate(out.tau);
+  return out;
+}
+
+}  // namespace control
+}  // namespace offshore_gnc

@@ -1,0 +1,202 @@
+#include "offshore_gnc/guidance/los.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace guidance {
+
+void LosParams::validate() const {
+  requireRange("los/kp", kp, 1e-4, 10.0);
+  requireRange("los/ki", ki, 0.0, 1.0);
+  requireRange("los/integral_limit", integral_limit, 0.0, kPi / 2);
+  requireRange("los/crab_gain", crab_gain, 0.0, 1.0);
+  requireRange("los/crab_limit", crab_limit, 0.0, kPi / 2);
+  requireRange("los/acceptance_radius", acceptance_radius, 0.01, 1000.0);
+  requireRange("los/surge_speed", surge_speed, 0.0, 20.0);
+  requireRange("los/min_leg_length", min_leg_length, 1e-6, 10.0);
+}
+
+double legGeometry(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p, double* e,
+                   double* s) {
+  const double chi_p = std::atan2(b.y() - a.y(), b.x() - a.x());  // eq. 4.11
+  const double c = std::cos(chi_p), sn = std::sin(chi_p);
+  if (e) *e = -(p.x() - a.x()) * sn + (p.y() - a.y()) * c;  // eq. 4.12
+  if (s) *s = (p.x() - a.x()) * c + (p.y() - a.y()) * sn;
+  return chi_p;
+}
+
+LosGuidance::LosGuidance(const LosParams& p) { setParams(p); }
+
+void LosGuidance::setParams(const LosParams& p) {
+  p.validate();
+  p_ = p;
+  beta_hat_ = std::clamp(beta_hat_, -p_.crab_limit, p_.crab_limit);
+}
+
+void LosGuidance::clear() {
+  wp_.clear();
+  path_error_.clear();
+  leg_ = 1;
+  finished_ = false;
+  integral_ = 0.0;
+}
+
+bool LosGuidance::setPath(const std::vector<Eigen::Vector3d>& waypoints, bool resume) {
+  clear();
+  for (const auto& w : waypoints) {
+    if (!w.allFinite()) {
+      counters_.increment("bad_path");
+      path_error_ = "path rejected: non-finite waypoint";
+      wp_.clear();
+      return false;
+    }
+    if (!wp_.empty() && (w - wp_.back()).norm() < p_.min_leg_length) {
+      counters_.increment("duplicate_waypoints");  // merged, not an error
+      continue;
+    }
+    wp_.push_back(w);
+  }
+  if (wp_.empty()) {
+    if (!waypoints.empty()) counters_.increment("bad_path");
+    path_error_ = waypoints.empty() ? "" : "path rejected: no usable waypoint";
+    return waypoints.empty();
+  }
+  if (wp_.size() == 1) {
+    counters_.increment("bad_path");
+    path_error_ = "path rejected: a single waypoint (or all duplicates) gives no leg to follow";
+    wp_.clear();
+    return false;
+  }
+  if (resume && have_pose_) {
+    // Nearest leg to the vehicle; ties go to the later leg so that progress is never undone.
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 1; k < wp_.size(); ++k) {
+      const Eigen::Vector2d a = wp_[k - 1].head<2>(), b = wp_[k].head<2>(), p = last_pos_.head<2>();
+      const Eigen::Vector2d ab = b - a;
+      const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      const double d = (a + t * ab - p).norm();
+      if (d <= best + 1e-9) {
+        best = d;
+        leg_ = k;
+      }
+    }
+  }
+  return true;
+}
+
+double LosGuidance::remaining(const Eigen::Vector3d& pos) const {
+  if (leg_ >= wp_.size()) return 0.0;
+  double d = (wp_[leg_].head<2>() - pos.head<2>()).norm();
+  for (std::size_t k = leg_ + 1; k < wp_.size(); ++k) d += (wp_[k] - wp_[k - 1]).head<2>().norm();
+  return d;
+}
+
+LosOutput LosGuidance::hold(Mode mode, const std::string& why) {
+  LosOutput o;
+  o.mode = mode;
+  o.num_waypoints = wp_.size();
+  o.active_leg = leg_;
+  o.hold_position = last_pos_;
+  o.path_point = last_pos_;
+  o.desired_heading = last_yaw_;
+  o.desired_depth = last_pos_.z();
+  o.desired_surge = 0.0;
+  o.crab_angle = beta_hat_;
+  o.acceptance_radius = p_.acceptance_radius;
+  o.status_text = why;
+  return o;
+}
+
+LosOutput LosGuidance::update(const VehicleState& s, double dt) {
+  if (!s.position.allFinite() || !std::isfinite(s.yaw)) {
+    counters_.increment("nan_pose");
+    return hold(Mode::kHoldFault, have_pose_ ? "non-finite pose: holding the last good position"
+                                             : "non-finite pose and no previous pose: holding (neutral)");
+  }
+  if (!std::isfinite(dt) || dt < 0.0 || dt > 10.0) {
+    counters_.increment("bad_dt");
+    dt = 0.0;  // integrators do not move on a bad time step
+  }
+  have_pose_ = true;
+  last_pos_ = s.position;
+  last_yaw_ = wrapAngle(s.yaw);
+
+  if (wp_.empty()) {
+    return path_error_.empty() ? hold(Mode::kIdle, "no path") : hold(Mode::kHoldFault, path_error_);
+  }
+
+  const Eigen::Vector2d p = s.position.head<2>();
+  double e = 0.0, along = 0.0, chi_p = 0.0;
+  // Switching (eq. 4.13/4.14) plus the passed-waypoint rule: along-track beyond the leg length.
+  while (!finished_) {
+    const Eigen::Vector3d& a = wp_[leg_ - 1];
+    const Eigen::Vector3d& b = wp_[leg_];
+    chi_p = legGeometry(a.head<2>(), b.head<2>(), p, &e, &along);
+    const double leg_len = (b - a).head<2>().norm();
+    const double dist = p_.sphere ? (s.position - b).norm() : (p - b.head<2>()).norm();
+    // A purely vertical leg has no horizontal length: only the sphere switches it.
+    const bool passed = leg_len > p_.min_leg_length && along >= leg_len;
+    if (dist > p_.acceptance_radius && !passed) break;
+    if (leg_ + 1 >= wp_.size()) {
+      finished_ = true;
+      counters_.increment("path_finished");
+    } else {
+      ++leg_;
+    }
+  }
+
+  LosOutput o;
+  o.num_waypoints = wp_.size();
+  o.active_leg = leg_;
+  o.acceptance_radius = p_.acceptance_radius;
+  o.path_angle = chi_p;
+  o.cross_track_error = e;
+  o.along_track_distance = along;
+  o.crab_angle = beta_hat_;
+  if (finished_) {
+    o.mode = Mode::kStationKeeping;
+    o.hold_position = wp_.back();
+    o.path_point = wp_.back();
+    o.desired_heading = chi_p;
+    o.desired_depth = wp_.back().z();
+    o.desired_surge = 0.0;
+    o.distance_to_go = 0.0;
+    o.status_text = "end of path reached: station keeping at the last waypoint";
+    return o;
+  }
+
+  const double delta = 1.0 / p_.kp;
+  // ILOS with anti-windup: the integral term is clamped to +-integral_limit of steering.
+  if (p_.ki > 0.0) {
+    integral_ += e * dt;
+    const double imax = p_.integral_limit / p_.ki;
+    integral_ = std::clamp(integral_, -imax, imax);
+  }
+  if (p_.adaptive_crab) {
+    beta_hat_ += dt * p_.crab_gain * delta / std::sqrt(delta * delta + e * e) * e;
+    beta_hat_ = std::clamp(beta_hat_, -p_.crab_limit, p_.crab_limit);
+  }
+  const double chi_r = std::atan(-p_.kp * e - p_.ki * integral_);  // eq. 4.10
+  o.mode = Mode::kFollowPath;
+  o.crab_angle = beta_hat_;
+  o.desired_heading = wrapAngle(chi_p + chi_r - beta_hat_);      // eq. 4.9 with beta estimated
+  o.desired_depth = wp_[leg_].z();                                // constant-depth legs, depth apart
+  o.desired_surge = p_.surge_speed;
+  o.hold_position = s.position;
+  {
+    const Eigen::Vector3d& a = wp_[leg_ - 1];
+    const Eigen::Vector2d pp = a.head<2>() + along * Eigen::Vector2d(std::cos(chi_p), std::sin(chi_p));
+    o.path_point = Eigen::Vector3d(pp.x(), pp.y(), o.desired_depth);
+  }
+  o.distance_to_go = remaining(s.position);
+  o.status_text = "following leg " + std::to_string(leg_) + " of " + std::to_string(wp_.size() - 1);
+  return o;
+}
+
+}  // namespace guidance
+}  // namespace offshore_gnc

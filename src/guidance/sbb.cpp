@@ -1,0 +1,223 @@
+#include "offshore_gnc/guidance/sbb.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace guidance {
+namespace {
+
+// Axis-aligned rectangle in a leg frame: s along the leg from its start, e across (positive to starboard).
+struct Rect {
+  std::vector<std::uint32_t> ids;
+  double s_lo, s_hi, e_lo, e_hi;
+};
+
+struct LegFrame {
+  Eigen::Vector2d a, u, v;  // start, along unit, starboard unit
+  double angle;
+  Eigen::Vector2d toNed(double s, double e) const { return a + u * s + v * e; }
+  Eigen::Vector2d toLeg(const Eigen::Vector2d& p) const { return {(p - a).dot(u), (p - a).dot(v)}; }
+};
+
+LegFrame legFrame(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  LegFrame f;
+  f.a = a;
+  f.angle = std::atan2(b.y() - a.y(), b.x() - a.x());
+  f.u = Eigen::Vector2d(std::cos(f.angle), std::sin(f.angle));
+  f.v = Eigen::Vector2d(-std::sin(f.angle), std::cos(f.angle));
+  return f;
+}
+
+Rect rectOf(const SbbObstacle& o, const LegFrame& f, const SbbParams& p) {
+  const double ext = std::max(std::abs(o.length), std::abs(o.width));
+  const Eigen::Vector2d c = f.toLeg(o.origin);
+  const double hl = p.safety_x + ext / 2.0, hw = p.safety_y + ext / 2.0;  // eq. 4.5
+  return {{o.id}, c.x() - hl, c.x() + hl, c.y() - hw, c.y() + hw};
+}
+
+SbbBox boxOf(const Rect& r, const LegFrame& f) {
+  SbbBox b;
+  b.ids = r.ids;
+  b.path_angle = f.angle;
+  b.length = r.s_hi - r.s_lo;
+  b.width = r.e_hi - r.e_lo;
+  b.center = f.toNed((r.s_lo + r.s_hi) / 2, (r.e_lo + r.e_hi) / 2);
+  b.corners = {f.toNed(r.s_lo, r.e_lo), f.toNed(r.s_hi, r.e_lo), f.toNed(r.s_hi, r.e_hi), f.toNed(r.s_lo, r.e_hi)};
+  return b;
+}
+
+// Merge boxes that overlap along the leg and leave no passable gap across it (< 2 corridor).
+std::vector<Rect> merge(std::vector<Rect> rs, double corridor) {
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (std::size_t i = 0; i < rs.size() && !changed; ++i)
+      for (std::size_t j = i + 1; j < rs.size() && !changed; ++j) {
+        Rect& a = rs[i];
+        const Rect& b = rs[j];
+        const bool along = a.s_lo <= b.s_hi && b.s_lo <= a.s_hi;
+        const double gap = std::max(a.e_lo, b.e_lo) - std::min(a.e_hi, b.e_hi);
+        if (along && gap < 2.0 * corridor) {
+          a.s_lo = std::min(a.s_lo, b.s_lo);
+          a.s_hi = std::max(a.s_hi, b.s_hi);
+          a.e_lo = std::min(a.e_lo, b.e_lo);
+          a.e_hi = std::max(a.e_hi, b.e_hi);
+          a.ids.insert(a.ids.end(), b.ids.begin(), b.ids.end());
+          rs.erase(rs.begin() + j);
+          changed = true;
+        }
+      }
+  }
+  return rs;
+}
+
+}  // namespace
+
+void SbbParams::validate() const {
+  requireRange("sbb/safety_x", safety_x, 0.0, 1000.0);
+  requireRange("sbb/safety_y", safety_y, 0.0, 1000.0);
+  requireRange("sbb/corridor", corridor, 0.0, 100.0);
+  requireRange("sbb/max_offset", max_offset, 0.0, 10000.0);
+  requireRange("sbb/stop_margin", stop_margin, 0.0, 100.0);
+  requireRange("sbb/approach", approach, 0.0, 1000.0);
+}
+
+bool SbbBox::contains(const Eigen::Vector2d& p, double margin) const {
+  const LegFrame f{corners[0], Eigen::Vector2d(std::cos(path_angle), std::sin(path_angle)),
+                   Eigen::Vector2d(-std::sin(path_angle), std::cos(path_angle)), path_angle};
+  const Eigen::Vector2d q = f.toLeg(p);
+  return q.x() > margin && q.x() < length - margin && q.y() > margin && q.y() < width - margin;
+}
+
+SbbBox makeBox(const SbbObstacle& o, double path_angle, const SbbParams& p) {
+  LegFrame f{o.origin, Eigen::Vector2d(std::cos(path_angle), std::sin(path_angle)),
+             Eigen::Vector2d(-std::sin(path_angle), std::cos(path_angle)), path_angle};
+  return boxOf(rectOf(o, f, p), f);
+}
+
+SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d& vehicle,
+                const std::vector<SbbObstacle>& obstacles, const SbbParams& p) {
+  SbbPlan out;
+  std::vector<SbbObstacle> obs;
+  for (const auto& o : obstacles)
+    if (o.origin.allFinite() && std::isfinite(o.length) && std::isfinite(o.width)) obs.push_back(o);
+  if (path.size() < 2 || !vehicle.allFinite()) {
+    out.path = path;
+    out.status = path.size() < 2 ? "path too short for obstacle avoidance" : "no vehicle position";
+    return out;
+  }
+  std::vector<bool> used(obs.size(), false);
+  // Every obstacle's box in each leg's frame, to reject detour waypoints inside any of them.
+  std::vector<SbbBox> all_boxes;
+  std::vector<bool> is_detour;  // parallel to out.path
+  std::vector<Eigen::Vector2d> corners_added;
+  auto push = [&](const Eigen::Vector3d& w, bool detour, bool goal = false) {
+    if (!detour && !goal) {
+      for (const auto& c : corners_added)
+        if ((w.head<2>() - c).norm() < p.approach) return;  // run-out: too close after a detour corner
+    } else {
+      // run-in: drop the original waypoints just before the corner
+      while (out.path.size() > 1 && !is_detour.back() && (out.path.back().head<2>() - w.head<2>()).norm() < p.approach) {
+        out.path.pop_back();
+        is_detour.pop_back();
+      }
+      corners_added.push_back(w.head<2>());
+    }
+    out.path.push_back(w);
+    is_detour.push_back(detour);
+  };
+  out.path.push_back(path.front());
+  is_detour.push_back(false);
+  for (std::size_t k = 1; k < path.size() && !out.blocked; ++k) {
+    const double depth = path[k].z();
+    const LegFrame f = legFrame(path[k - 1].head<2>(), path[k].head<2>());
+    const double len = (path[k] - path[k - 1]).head<2>().norm();
+    if (len < 1e-6) continue;
+    std::vector<Rect> rs;
+    for (const auto& o : obs) rs.push_back(rectOf(o, f, p));
+    for (const auto& r : rs) all_boxes.push_back(boxOf(r, f));
+    std::vector<Rect> cut;
+    for (const auto& r : merge(rs, p.corridor))
+      if (r.s_hi > 0.0 && r.s_lo < len && r.e_hi > -p.corridor && r.e_lo < p.corridor) cut.push_back(r);
+    std::sort(cut.begin(), cut.end(), [](const Rect& a, const Rect& b) { return a.s_lo < b.s_lo; });
+    const Eigen::Vector2d veh = f.toLeg(vehicle);
+    for (const auto& r : cut) {
+      // The side nearer to the vehicle first (eq. 4.7); the other if it does not fit the navigable corridor.
+      const double port = r.e_lo - p.corridor, stbd = r.e_hi + p.corridor;
+      SbbSide first = std::abs(veh.y() - port) <= std::abs(veh.y() - stbd) ? SbbSide::kPort : SbbSide::kStarboard;
+      SbbSide chosen = SbbSide::kBlocked;
+      for (SbbSide side : {first, first == SbbSide::kPort ? SbbSide::kStarboard : SbbSide::kPort}) {
+        const double e = side == SbbSide::kPort ? port : stbd;
+        if (std::abs(e) > p.max_offset) continue;
+        chosen = side;
+        break;
+      }
+      SbbBox box = boxOf(r, f);
+      box.cuts_path = true;
+      box.side = chosen;
+      out.boxes.push_back(box);
+      for (std::size_t i = 0; i < obs.size(); ++i)
+        if (std::find(r.ids.begin(), r.ids.end(), obs[i].id) != r.ids.end()) used[i] = true;
+      if (chosen == SbbSide::kBlocked) {
+        out.blocked = true;
+        out.modified = true;
+        const double s_stop = std::max(0.0, r.s_lo - p.stop_margin);
+        const Eigen::Vector2d stop = f.toNed(s_stop, 0.0);
+        if ((stop - out.path.back().head<2>()).norm() > 1e-3) out.path.emplace_back(stop.x(), stop.y(), depth);
+        out.status = "blocked: no safe side around the safety box of obstacle(s)";
+        for (auto id : r.ids) out.status += " " + std::to_string(id);
+        out.status += "; path ends before it";
+        break;
+      }
+      const double e = chosen == SbbSide::kPort ? port : stbd;
+      for (double s : {std::max(r.s_lo, 0.0), std::min(r.s_hi, len)}) {
+        const Eigen::Vector2d w = f.toNed(s, e);
+        push(Eigen::Vector3d(w.x(), w.y(), depth), true);
+      }
+      out.modified = true;
+    }
+    if (out.blocked) break;
+    push(path[k], false, k + 1 == path.size());  // the goal is always kept
+  }
+  // Never a waypoint inside a box (original waypoints included): drop them, keep the last as the goal only if
+  // it is free, otherwise report it.
+  std::vector<Eigen::Vector3d> kept;
+  for (std::size_t i = 0; i < out.path.size(); ++i) {
+    bool inside = false;
+    for (const auto& b : all_boxes) inside = inside || b.contains(out.path[i].head<2>(), 1e-6);
+    if (inside && i > 0) {
+      out.modified = true;
+      if (out.status.empty()) out.status = "waypoint inside a safety box dropped";
+      continue;
+    }
+    kept.push_back(out.path[i]);
+  }
+  out.path = kept;
+  for (std::size_t i = 0; i < obs.size(); ++i) {
+    if (used[i]) continue;
+    // Off the path: reported, aligned with the nearest leg, no waypoints (thesis 4.1.2).
+    double best = std::numeric_limits<double>::infinity();
+    double angle = 0.0;
+    for (std::size_t k = 1; k < path.size(); ++k) {
+      const Eigen::Vector2d a = path[k - 1].head<2>(), b = path[k].head<2>();
+      const Eigen::Vector2d ab = b - a;
+      if (ab.norm() < 1e-6) continue;
+      const double t = std::clamp((obs[i].origin - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      const double d = (a + t * ab - obs[i].origin).norm();
+      if (d < best) {
+        best = d;
+        angle = std::atan2(ab.y(), ab.x());
+      }
+    }
+    out.boxes.push_back(makeBox(obs[i], angle, p));
+  }
+  if (out.status.empty()) out.status = out.modified ? "detour around safety box(es)" : "path clear";
+  return out;
+}
+
+}  // namespace guidance
+}  // namespace offshore_gnc

@@ -1,0 +1,270 @@
+#include "offshore_gnc/perception/lidar_targets.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <sstream>
+
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace perception {
+
+namespace {
+
+std::size_t typeSize(std::uint8_t t) {
+  switch (static_cast<FieldType>(t)) {
+    case FieldType::Int8: case FieldType::UInt8: return 1;
+    case FieldType::Int16: case FieldType::UInt16: return 2;
+    case FieldType::Int32: case FieldType::UInt32: case FieldType::Float32: return 4;
+    case FieldType::Float64: return 8;
+  }
+  return 0;
+}
+
+template <typename T>
+T load(const std::uint8_t* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));  // PointCloud2 offsets need not be aligned
+  return v;
+}
+
+double read(const std::uint8_t* p, std::uint8_t t) {
+  switch (static_cast<FieldType>(t)) {
+    case FieldType::Int8: return load<std::int8_t>(p);
+    case FieldType::UInt8: return load<std::uint8_t>(p);
+    case FieldType::Int16: return load<std::int16_t>(p);
+    case FieldType::UInt16: return load<std::uint16_t>(p);
+    case FieldType::Int32: return load<std::int32_t>(p);
+    case FieldType::UInt32: return load<std::uint32_t>(p);
+    case FieldType::Float32: return load<float>(p);
+    case FieldType::Float64: return load<double>(p);
+  }
+  return 0.0;
+}
+
+constexpr std::uint32_t kMaxRings = 1024;
+
+}  // namespace
+
+void LidarConfig::validate() const {
+  requireRange("min_range", min_range, 0.0, 1e4);
+  requireRange("max_range", max_range, min_range, 1e4);
+  requireRange("max_z", max_z, min_z, 1e4);
+  requireRange("min_z", min_z, -1e4, max_z);
+  requireRange("gap", gap, 1e-3, 1e3);
+  requireRange("layer_merge", layer_merge, 0.0, 1e3);
+  requireRange("min_points", min_points, 1, 1e6);
+}
+
+const char* toString(CloudError e) {
+  switch (e) {
+    case CloudError::None: return "ok";
+    case CloudError::Empty: return "empty_cloud";
+    case CloudError::MissingXyz: return "missing_xyz";
+    case CloudError::BadFieldType: return "bad_field";
+    case CloudError::SizeMismatch: return "size_mismatch";
+    case CloudError::BigEndian: return "big_endian";
+  }
+  return "unknown";
+}
+
+LidarTargetExtractor::LidarTargetExtractor(const LidarConfig& cfg) : cfg_(cfg) { cfg_.validate(); }
+
+bool LidarTargetExtractor::checkLayout(const CloudView& c, LidarResult& r) {
+  std::ostringstream os;
+  auto fail = [&](CloudError e) {
+    r.error = e;
+    r.message = os.str();
+    counters_.increment(toString(e));
+    return false;
+  };
+  if (c.width == 0 || c.height == 0 || c.size == 0) {
+    os << "empty cloud (" << c.width << " x " << c.height << ", " << c.size << " bytes)";
+    return fail(CloudError::Empty);
+  }
+  if (!c.x.present || !c.y.present || !c.z.present) {
+    os << "cloud lacks an x, y or z field";
+    return fail(CloudError::MissingXyz);
+  }
+  if (c.big_endian) {
+    os << "big-endian clouds are not supported";
+    return fail(CloudError::BigEndian);
+  }
+  for (const CloudField* f : {&c.x, &c.y, &c.z}) {
+    const auto t = static_cast<FieldType>(f->datatype);
+    if (t != FieldType::Float32 && t != FieldType::Float64) {
+      os << "x/y/z must be FLOAT32 or FLOAT64, got datatype " << int(f->datatype);
+      return fail(CloudError::BadFieldType);
+    }
+    if (f->offset + typeSize(f->datatype) > c.point_step) {
+      os << "field at offset " << f->offset << " does not fit in point_step " << c.point_step;
+      return fail(CloudError::BadFieldType);
+    }
+  }
+  const std::uint64_t min_row = std::uint64_t(c.width) * c.point_step;
+  if (c.row_step < min_row || std::uint64_t(c.row_step) * c.height != c.size) {
+    os << "data size " << c.size << " disagrees with " << c.width << " x " << c.height << " points, point_step "
+       << c.point_step << ", row_step " << c.row_step;
+    return fail(CloudError::SizeMismatch);
+  }
+  return true;
+}
+
+std::size_t LidarTargetExtractor::find(std::size_t i) {
+  while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+  return i;
+}
+
+bool LidarTargetExtractor::closeEnough(const Segment& a, const Segment& b) const {
+  const float d = static_cast<float>(cfg_.layer_merge);
+  if (a.minx > b.maxx + d || b.minx > a.maxx + d || a.miny > b.maxy + d || b.miny > a.maxy + d) return false;
+  // Bounding boxes touch; confirm with points: up to 16 samples of the shorter segment against all of the
+  // longer one (adjacent layers of one object are close everywhere, so a few samples suffice).
+  const Segment& s = (a.end - a.begin) <= (b.end - b.begin) ? a : b;
+  const Segment& l = (&s == &a) ? b : a;
+  const auto& sp = layers_[s.layer];
+  const auto& lp = layers_[l.layer];
+  const std::uint32_t n = s.end - s.begin;
+  const std::uint32_t samples = std::min<std::uint32_t>(n, 16);
+  const float d2 = d * d;
+  for (std::uint32_t k = 0; k < samples; ++k) {
+    const P& p = sp[s.begin + (samples == 1 ? 0 : k * (n - 1) / (samples - 1))];
+    for (std::uint32_t j = l.begin; j < l.end; ++j) {
+      const float dx = p.x - lp[j].x, dy = p.y - lp[j].y;
+      if (dx * dx + dy * dy <= d2) return true;
+    }
+  }
+  return false;
+}
+
+LidarResult LidarTargetExtractor::extract(const CloudView& c) {
+  LidarResult r;
+  if (!checkLayout(c, r)) return r;
+  const bool organised = c.height > 1;
+  const bool use_ring = !organised && c.ring.present && typeSize(c.ring.datatype) > 0 &&
+                        c.ring.offset + typeSize(c.ring.datatype) <= c.point_step;
+  const bool fast = c.x.datatype == std::uint8_t(FieldType::Float32) &&
+                    c.y.datatype == std::uint8_t(FieldType::Float32) && c.z.datatype == std::uint8_t(FieldType::Float32);
+  const std::size_t nlayers = organised ? c.height : (use_ring ? kMaxRings : 1);
+  if (layers_.size() < nlayers) layers_.resize(nlayers);
+  for (auto& l : layers_) l.clear();
+
+  const bool hull = cfg_.hull_min_x < cfg_.hull_max_x && cfg_.hull_min_y < cfg_.hull_max_y;
+  const double rmin2 = cfg_.min_range * cfg_.min_range, rmax2 = cfg_.max_range * cfg_.max_range;
+  std::size_t bad_ring = 0, non_finite = 0, used = 0;
+  for (std::uint32_t row = 0; row < c.height; ++row) {
+    const std::uint8_t* rp = c.data + std::size_t(row) * c.row_step;
+    for (std::uint32_t col = 0; col < c.width; ++col) {
+      const std::uint8_t* pp = rp + std::size_t(col) * c.point_step;
+      double x, y, z;
+      if (fast) {
+        x = load<float>(pp + c.x.offset), y = load<float>(pp + c.y.offset), z = load<float>(pp + c.z.offset);
+      } else {
+        x = read(pp + c.x.offset, c.x.datatype), y = read(pp + c.y.offset, c.y.datatype);
+        z = read(pp + c.z.offset, c.z.datatype);
+      }
+      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
+        ++non_finite;  // no echo: normal for LiDARs, counted only in the result
+        continue;
+      }
+      const double r2 = x * x + y * y;
+      if (r2 < rmin2 || r2 > rmax2 || z < cfg_.min_z || z > cfg_.max_z) continue;
+      if (hull && x >= cfg_.hull_min_x && x <= cfg_.hull_max_x && y >= cfg_.hull_min_y && y <= cfg_.hull_max_y)
+        continue;
+      std::size_t layer = row;
+      if (use_ring) {
+        const double ring = read(pp + c.ring.offset, c.ring.datatype);
+        if (!(ring >= 0 && ring < kMaxRings)) {
+          ++bad_ring;
+          continue;
+        }
+        layer = static_cast<std::size_t>(ring);
+      } else if (!organised) {
+        layer = 0;
+      }
+      layers_[layer].push_back(P{float(x), float(y), float(z)});
+      ++used;
+    }
+  }
+  if (bad_ring) counters_.increment("bad_ring", bad_ring);
+  r.points_in = std::size_t(c.width) * c.height;
+  r.points_used = used;
+  r.non_finite = non_finite;
+
+  // Split each layer in scan order.
+  segments_.clear();
+  const float gap2 = float(cfg_.gap * cfg_.gap);
+  for (std::uint32_t li = 0; li < nlayers; ++li) {
+    const auto& pts = layers_[li];
+    if (pts.empty()) continue;
+    Segment s{li, 0, 0, pts[0].x, pts[0].x, pts[0].y, pts[0].y};
+    for (std::uint32_t i = 0; i < pts.size(); ++i) {
+      if (i > 0) {
+        const float dx = pts[i].x - pts[i - 1].x, dy = pts[i].y - pts[i - 1].y;
+        if (dx * dx + dy * dy > gap2) {
+          s.end = i;
+          segments_.push_back(s);
+          s = Segment{li, i, i, pts[i].x, pts[i].x, pts[i].y, pts[i].y};
+        }
+      }
+      s.minx = std::min(s.minx, pts[i].x); s.maxx = std::max(s.maxx, pts[i].x);
+      s.miny = std::min(s.miny, pts[i].y); s.maxy = std::max(s.maxy, pts[i].y);
+    }
+    s.end = static_cast<std::uint32_t>(pts.size());
+    segments_.push_back(s);
+  }
+  parent_.resize(segments_.size());
+  std::iota(parent_.begin(), parent_.end(), 0);
+
+  // Wrap at the end of a 360-degree aperture: the last segment of a layer continues its first.
+  for (std::size_t i = 0; i < segments_.size();) {
+    std::size_t j = i;
+    while (j + 1 < segments_.size() && segments_[j + 1].layer == segments_[i].layer) ++j;
+    if (j > i) {
+      const auto& pts = layers_[segments_[i].layer];
+      const float dx = pts.front().x - pts.back().x, dy = pts.front().y - pts.back().y;
+      if (dx * dx + dy * dy <= gap2) parent_[find(j)] = find(i);
+    }
+    i = j + 1;
+  }
+
+  // Merge segments of different layers that touch: sweep over segments sorted by min x.
+  order_.resize(segments_.size());
+  std::iota(order_.begin(), order_.end(), 0);
+  std::sort(order_.begin(), order_.end(), [this](std::size_t a, std::size_t b) { return segments_[a].minx < segments_[b].minx; });
+  const float lm = float(cfg_.layer_merge);
+  for (std::size_t oi = 0; oi < order_.size(); ++oi) {
+    const Segment& a = segments_[order_[oi]];
+    for (std::size_t oj = oi + 1; oj < order_.size(); ++oj) {
+      const Segment& b = segments_[order_[oj]];
+      if (b.minx > a.maxx + lm) break;
+      if (a.layer == b.layer || find(order_[oi]) == find(order_[oj])) continue;
+      if (closeEnough(a, b)) parent_[find(order_[oj])] = find(order_[oi]);
+    }
+  }
+
+  // Gather clusters, describe them.
+  std::vector<std::size_t> slot(segments_.size(), SIZE_MAX);
+  std::size_t nclusters = 0;
+  for (std::size_t i = 0; i < segments_.size(); ++i) {
+    const std::size_t root = find(i);
+    if (slot[root] == SIZE_MAX) slot[root] = nclusters++;
+  }
+  if (cluster_points_.size() < nclusters) cluster_points_.resize(nclusters);
+  for (std::size_t k = 0; k < nclusters; ++k) cluster_points_[k].clear();
+  for (std::size_t i = 0; i < segments_.size(); ++i) {
+    auto& out = cluster_points_[slot[find(i)]];
+    const auto& pts = layers_[segments_[i].layer];
+    for (std::uint32_t k = segments_[i].begin; k < segments_[i].end; ++k) out.emplace_back(pts[k].x, pts[k].y, pts[k].z);
+  }
+  for (std::size_t k = 0; k < nclusters; ++k) {
+    if (cluster_points_[k].size() < static_cast<std::size_t>(cfg_.min_points)) continue;
+    r.targets.push_back(describeTarget(cluster_points_[k], Eigen::Vector3d::Zero()));
+  }
+  return r;
+}
+
+}  // namespace perception
+}  // namespace offshore_gnc

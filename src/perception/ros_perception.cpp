@@ -1,0 +1,171 @@
+#include "ros_perception.h"
+
+#include <sensor_msgs/PointField.h>
+#include <tf2/exceptions.h>
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <cmath>
+#include <limits>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/ros/diagnostics.h"
+
+namespace offshore_gnc {
+namespace perception_ros {
+
+perception::CloudView cloudView(const sensor_msgs::PointCloud2& m) {
+  perception::CloudView v;
+  v.data = m.data.data();
+  v.size = m.data.size();
+  v.width = m.width;
+  v.height = m.height;
+  v.point_step = m.point_step;
+  v.row_step = m.row_step;
+  v.big_endian = m.is_bigendian;
+  for (const auto& f : m.fields) {
+    perception::CloudField* dst = nullptr;
+    if (f.name == "x") dst = &v.x;
+    else if (f.name == "y") dst = &v.y;
+    else if (f.name == "z") dst = &v.z;
+    else if (f.name == "ring") dst = &v.ring;
+    if (!dst) continue;
+    dst->present = true;
+    dst->offset = f.offset;
+    dst->datatype = f.datatype;
+    dst->count = f.count;
+  }
+  return v;
+}
+
+perception::SonarBeamView beamView(const offshore_gnc::SonarBeam& m) {
+  perception::SonarBeamView v;
+  v.stamp = m.header.stamp.toSec();
+  v.bearing = m.bearing;
+  v.beam_width = m.beam_width;
+  v.range_resolution = m.range_resolution;
+  v.range_offset = m.range_offset;
+  v.status = m.head_status;
+  v.bins = m.intensities.data();
+  v.num_bins = m.intensities.size();
+  return v;
+}
+
+bool lookupPose(const tf2_ros::Buffer& tf, const std::string& target, const std::string& source,
+                const ros::Time& stamp, double timeout, Eigen::Isometry3d& pose, std::string& error) {
+  try {
+    const auto t = tf.lookupTransform(target, source, stamp, ros::Duration(timeout));
+    pose = tf2::transformToEigen(t);
+    return true;
+  } catch (const tf2::TransformException& e) {
+    error = e.what();
+    return false;
+  }
+}
+
+// Reads the sonar parameters shared with the wall detection (same names, same defaults).
+perception::SonarConfig readSonarConfig(const ros_util::ParamReader& p) {
+  perception::SonarConfig c;
+  c.min_range = p.number("min_range", 1.5, 0.0, 1e3);
+  c.max_range = p.number("max_range", 0.0, 0.0, 1e3);
+  c.threshold = p.integer("threshold", 90, 0, 255);
+  c.max_beam_gap = deg2rad(p.number("max_beam_gap_deg", 6.0, 0.01, 180.0));
+  c.max_range_jump = p.number("max_range_jump", 1.0, 1e-3, 1e3);
+  c.min_beams = p.integer("min_beams", 2, 1, 10000);
+  return c;
+}
+
+BeamFed feedBeam(perception::SonarTargetExtractor& ex, const offshore_gnc::SonarBeam& msg, const tf2_ros::Buffer& tf,
+                 const std::string& target_frame, double timeout, const std::string& who) {
+  const perception::SonarBeamView beam = beamView(msg);
+  if (!ex.check(beam)) {
+    ROS_ERROR_THROTTLE(5.0, "%s: rejected sonar beam: %zu bins, bearing %.3f rad, resolution %.3f m (counters in "
+                       "diagnostics)", who.c_str(), beam.num_bins, beam.bearing, beam.range_resolution);
+    return BeamFed::Rejected;
+  }
+  Eigen::Isometry3d pose;
+  std::string err;
+  if (!lookupPose(tf, target_frame, msg.header.frame_id, msg.header.stamp, timeout, pose, err)) {
+    ex.counters().increment("no_transform");
+    ex.breakRun();
+    ROS_WARN_THROTTLE(5.0, "%s: dropping sonar beam: no transform %s <- %s at %.3f: %s", who.c_str(),
+                      target_frame.c_str(), msg.header.frame_id.c_str(), msg.header.stamp.toSec(), err.c_str());
+    return BeamFed::NoPose;
+  }
+  ex.addBeam(beam, pose);
+  return BeamFed::Added;
+}
+
+geometry_msgs::Point toPoint(const Eigen::Vector3d& v) {
+  geometry_msgs::Point p;
+  p.x = v.x();
+  p.y = v.y();
+  p.z = v.z();
+  return p;
+}
+
+offshore_gnc::Target toTarget(const perception::TargetGeometry& g, const Eigen::Isometry3d& T, std::uint8_t source,
+                              double bearing_cw) {
+  offshore_gnc::Target t;
+  t.source = source;
+  t.origin = toPoint(T * g.origin);
+  t.centroid = toPoint(T * g.centroid);
+  t.nearest = toPoint(T * g.nearest);
+  t.length = g.length;
+  t.width = g.width;
+  t.height = g.height;
+  t.range = g.range;
+  t.bearing = bearing_cw;
+  t.num_points = static_cast<std::uint32_t>(g.num_points);
+  t.confidence = 1.0f;
+  t.latitude = t.longitude = t.depth = std::numeric_limits<double>::quiet_NaN();
+  return t;
+}
+
+visualization_msgs::MarkerArray targetMarkers(const std::vector<offshore_gnc::Target>& targets,
+                                              const std_msgs::Header& header, const std::string& ns, float r,
+                                              float g, float b) {
+  visualization_msgs::MarkerArray a;
+  visualization_msgs::Marker clear;
+  clear.header = header;
+  clear.ns = ns;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  a.markers.push_back(clear);
+  int id = 0;
+  for (const auto& t : targets) {
+    visualization_msgs::Marker m;
+    m.header = header;
+    m.ns = ns;
+    m.id = id++;
+    m.type = visualization_msgs::Marker::CYLINDER;
+    m.action = visualization_msgs::Marker::ADD;
+    m.pose.position = t.origin;
+    m.pose.orientation.w = 1.0;
+    const double d = std::max({t.length, t.width, 0.3});
+    m.scale.x = m.scale.y = d;
+    m.scale.z = std::max(t.height, 0.5);
+    m.color.r = r;
+    m.color.g = g;
+    m.color.b = b;
+    m.color.a = 0.8f;
+    a.markers.push_back(m);
+  }
+  return a;
+}
+
+Diagnostics::Diagnostics(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::string& name,
+                         const Counters& counters,
+                         std::function<void(diagnostic_updater::DiagnosticStatusWrapper&)> extra) {
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh, name);
+  updater_->setHardwareID(name);
+  updater_->add("perception", [&counters, extra](diagnostic_updater::DiagnosticStatusWrapper& s) {
+    s.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
+    if (extra) extra(s);
+    ros_util::addCounters(s, counters,
+                          {"empty_cloud", "missing_xyz", "bad_field", "size_mismatch", "big_endian", "no_transform",
+                           "empty_beam", "bad_bearing", "bad_beam_geometry", "bad_pose"});
+  });
+  timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
+}
+
+}  // namespace perception_ros
+}  // namespace offshore_gnc

@@ -1,0 +1,68 @@
+#pragma once
+// ROS edge of the perception module, shared by its three nodelets: message -> core views (zero-copy),
+// tf2 pose at a stamp, core targets -> offshore_gnc/Target, markers, and the diagnostics heartbeat.
+#include <Eigen/Geometry>
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <geometry_msgs/Point.h>
+#include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/buffer.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "offshore_gnc/SonarBeam.h"
+#include "offshore_gnc/Target.h"
+#include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/perception/lidar_targets.h"
+#include "offshore_gnc/perception/sonar_targets.h"
+#include "offshore_gnc/ros/params.h"
+
+namespace offshore_gnc {
+namespace perception_ros {
+
+// Field layout of a PointCloud2 (x, y, z, optional ring); the buffer is referenced, not copied.
+perception::CloudView cloudView(const sensor_msgs::PointCloud2& m);
+perception::SonarBeamView beamView(const offshore_gnc::SonarBeam& m);
+
+// Pose of `source` in `target` at `stamp`, waiting up to `timeout`. False (with the reason) when tf2 has no
+// transform for that time: callers drop the data, they never fall back to an older pose.
+bool lookupPose(const tf2_ros::Buffer& tf, const std::string& target, const std::string& source,
+                const ros::Time& stamp, double timeout, Eigen::Isometry3d& pose, std::string& error);
+
+// Validates one sonar beam, looks up the sonar pose at its stamp and feeds it to the extractor; logs
+// (throttled, prefixed with `who`) and counts what it rejects or cannot position.
+enum class BeamFed { Rejected, NoPose, Added };
+BeamFed feedBeam(perception::SonarTargetExtractor& ex, const offshore_gnc::SonarBeam& msg, const tf2_ros::Buffer& tf,
+                 const std::string& target_frame, double timeout, const std::string& who);
+
+// Sonar detection parameters, the same names and defaults for the sonar targets and wall detection nodelets.
+perception::SonarConfig readSonarConfig(const ros_util::ParamReader& p);
+
+geometry_msgs::Point toPoint(const Eigen::Vector3d& v);
+
+// Target message from core geometry given in the sensor frame (or already in the target frame with
+// `to_target` = identity). Geodetic fields NaN: perception has no geodetic reference.
+offshore_gnc::Target toTarget(const perception::TargetGeometry& g, const Eigen::Isometry3d& to_target,
+                              std::uint8_t source, double bearing_cw);
+
+// One cylinder per target at its origin, sized by its extent, after a DELETEALL of the namespace.
+visualization_msgs::MarkerArray targetMarkers(const std::vector<offshore_gnc::Target>& targets,
+                                              const std_msgs::Header& header, const std::string& ns,
+                                              float r, float g, float b);
+
+// diagnostic_updater with the core's counters, updated once a second; `extra` adds module figures.
+class Diagnostics {
+ public:
+  Diagnostics(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::string& name, const Counters& counters,
+              std::function<void(diagnostic_updater::DiagnosticStatusWrapper&)> extra);
+
+ private:
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer timer_;
+};
+
+}  // namespace perception_ros
+}  // namespace offshore_gnc

@@ -1,0 +1,156 @@
+// WallDetection: SonarBeam -> per sweep split-and-merge walls -> nav_msgs/Path of two waypoints at a set
+// distance from the chosen wall (/auv/sonar/wall_path, map_ned) + markers. Beams positioned with the tf2 pose
+// at their stamps (Algorithm 1 of the paper per beam, Algorithm 1 of Publication II per sweep).
+#include <nav_msgs/Path.h>
+#include <nodelet/nodelet.h>
+#include <pluginlib/class_list_macros.hpp>
+#include <ros/ros.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <atomic>
+#include <memory>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/perception/wall_detection.h"
+#include "offshore_gnc/ros/params.h"
+#include "ros_perception.h"
+
+namespace offshore_gnc {
+
+class WallDetectionNodelet : public nodelet::Nodelet {
+  void onInit() override {
+    ros::NodeHandle& nh = getNodeHandle();
+    ros::NodeHandle& pnh = getPrivateNodeHandle();
+    ros_util::ParamReader p(pnh);
+    try {
+      extractor_ = std::make_unique<perception::SonarTargetExtractor>(perception_ros::readSonarConfig(p));
+      cfg_.split_distance = p.number("split_distance", 0.25, 1e-3, 100);
+      cfg_.break_distance = p.number("break_distance", 1.5, 1e-3, 1e3);
+      cfg_.merge_angle = deg2rad(p.number("merge_angle_deg", 6.0, 0.0, 45.0));
+      cfg_.merge_distance = p.number("merge_distance", 0.4, 0.0, 100);
+      cfg_.merge_gap = p.number("merge_gap", 3.0, 0.0, 1e3);
+      cfg_.min_points = p.integer("min_points", 6, 2, 1000000);
+      cfg_.min_length = p.number("min_length", 2.0, 0.0, 1e4);
+      cfg_.offset = p.number("wall_distance", 2.0, 0.0, 1e3);
+      cfg_.spacing = p.number("waypoint_spacing", 2.0, 1e-3, 1e3);
+      cfg_.validate();
+      target_frame_ = p.text("target_frame", "map_ned");
+      base_frame_ = p.text("base_frame", "auv/base_link");
+      tf_timeout_ = p.number("tf_timeout", 0.1, 0.0, 10.0);
+    } catch (const ConfigError& e) {
+      NODELET_FATAL("%s", e.what());
+      throw;
+    }
+    tf_ = std::make_unique<tf2_ros::Buffer>();
+    listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_, nh);
+    path_pub_ = nh.advertise<nav_msgs::Path>("sonar/wall_path", 2, true);
+    markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("markers", 5);
+    sub_ = nh.subscribe("sonar/beam", 200, &WallDetectionNodelet::onBeam, this);
+    diag_ = std::make_unique<perception_ros::Diagnostics>(
+        nh, pnh, getName(), extractor_->counters(), [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+          s.add("sweeps", sweeps_.load());
+          s.add("last_walls", last_walls_.load());
+          s.add("paths", paths_.load());
+        });
+  }
+
+  void onBeam(const offshore_gnc::SonarBeam::ConstPtr& msg) {
+    perception_ros::feedBeam(*extractor_, *msg, *tf_, target_frame_, tf_timeout_, getName());
+    if (extractor_->sweepReady()) onSweep(extractor_->takeSweep());
+  }
+
+  void onSweep(const perception::SonarSweep& s) {
+    ++sweeps_;
+    std::vector<Eigen::Vector2d> pts;
+    pts.reserve(s.detections.size());
+    for (const auto& d : s.detections) pts.emplace_back(d.point.x(), d.point.y());
+    const auto walls = perception::extractWalls(pts, cfg_);
+    last_walls_ = walls.size();
+    const ros::Time stamp(s.end_stamp);
+    Eigen::Isometry3d vehicle;
+    std::string err;
+    if (!perception_ros::lookupPose(*tf_, target_frame_, base_frame_, stamp, tf_timeout_, vehicle, err)) {
+      extractor_->counters().increment("no_transform");
+      NODELET_WARN_THROTTLE(5.0, "no vehicle pose for the wall path: %s", err.c_str());
+      return;
+    }
+    // Heading: the body's forward axis expressed in the target frame (works for ENU or NED body conventions).
+    const Eigen::Vector3d fwd = vehicle.linear() * Eigen::Vector3d::UnitX();
+    const double yaw = std::atan2(fwd.y(), fwd.x());
+    const auto plan = perception::planWallPath(walls, vehicle.translation().head<2>(), yaw, cfg_);
+    std_msgs::Header h;
+    h.stamp = stamp;
+    h.frame_id = target_frame_;
+    publishMarkers(walls, plan, h);
+    if (!plan.ok) {
+      NODELET_WARN_THROTTLE(10.0, "no wall of at least %.1f m in the last sweep (%zu points)", cfg_.min_length,
+                            pts.size());
+      return;
+    }
+    nav_msgs::Path path;
+    path.header = h;
+    const Eigen::Vector2d dir = plan.wp2 - plan.wp1;
+    const double path_yaw = std::atan2(dir.y(), dir.x());  // about the frame's z (down in map_ned)
+    for (const Eigen::Vector2d& w : {plan.wp1, plan.wp2}) {
+      geometry_msgs::PoseStamped ps;
+      ps.header = h;
+      ps.pose.position = perception_ros::toPoint(Eigen::Vector3d(w.x(), w.y(), vehicle.translation().z()));
+      ps.pose.orientation.z = std::sin(path_yaw / 2);
+      ps.pose.orientation.w = std::cos(path_yaw / 2);
+      path.poses.push_back(ps);
+    }
+    ++paths_;
+    path_pub_.publish(path);
+  }
+
+  void publishMarkers(const std::vector<perception::WallSegment>& walls, const perception::WallPath& plan,
+                      const std_msgs::Header& h) {
+    visualization_msgs::MarkerArray a;
+    visualization_msgs::Marker clear;
+    clear.header = h;
+    clear.ns = "sonar_walls";
+    clear.action = visualization_msgs::Marker::DELETEALL;
+    a.markers.push_back(clear);
+    visualization_msgs::Marker lines;
+    lines.header = h;
+    lines.ns = "sonar_walls";
+    lines.id = 0;
+    lines.type = visualization_msgs::Marker::LINE_LIST;
+    lines.pose.orientation.w = 1.0;
+    lines.scale.x = 0.15;
+    lines.color.g = 1.0f;
+    lines.color.b = 1.0f;
+    lines.color.a = 1.0f;
+    for (const auto& w : walls) {
+      lines.points.push_back(perception_ros::toPoint(Eigen::Vector3d(w.a.x(), w.a.y(), 0)));
+      lines.points.push_back(perception_ros::toPoint(Eigen::Vector3d(w.b.x(), w.b.y(), 0)));
+    }
+    if (!lines.points.empty()) a.markers.push_back(lines);
+    if (plan.ok) {
+      visualization_msgs::Marker wp = lines;
+      wp.id = 1;
+      wp.type = visualization_msgs::Marker::SPHERE_LIST;
+      wp.scale.x = wp.scale.y = wp.scale.z = 0.5;
+      wp.color.r = 1.0f; wp.color.g = 1.0f; wp.color.b = 0.0f;
+      wp.points = {perception_ros::toPoint(Eigen::Vector3d(plan.wp1.x(), plan.wp1.y(), 0)),
+                   perception_ros::toPoint(Eigen::Vector3d(plan.wp2.x(), plan.wp2.y(), 0))};
+      a.markers.push_back(wp);
+    }
+    markers_pub_.publish(a);
+  }
+
+  perception::WallConfig cfg_;
+  std::string target_frame_, base_frame_;
+  double tf_timeout_ = 0.1;
+  std::unique_ptr<perception::SonarTargetExtractor> extractor_;
+  std::unique_ptr<tf2_ros::Buffer> tf_;
+  std::unique_ptr<tf2_ros::TransformListener> listener_;
+  ros::Publisher path_pub_, markers_pub_;
+  ros::Subscriber sub_;
+  std::unique_ptr<perception_ros::Diagnostics> diag_;
+  std::atomic<std::uint64_t> sweeps_{0}, last_walls_{0}, paths_{0};
+};
+
+}  // namespace offshore_gnc
+
+PLUGINLIB_EXPORT_CLASS(offshore_gnc::WallDetectionNodelet, nodelet::Nodelet)

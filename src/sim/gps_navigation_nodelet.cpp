@@ -1,0 +1,103 @@
+// GpsNavigation: /usv_gps + /usv_heading -> /usv/odom and TF map -> usv/base_link (geo::LocalNed), the USV's
+// navigation in simulation and on hardware alike (the GPS-compass is the USV's position and heading source).
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <geometry_msgs/QuaternionStamped.h>
+#include <nodelet/nodelet.h>
+#include <pluginlib/class_list_macros.hpp>
+#include <sensor_msgs/NavSatFix.h>
+#include <tf2/LinearMath/Matrix3x3.h>
+#include <tf2/LinearMath/Quaternion.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <memory>
+
+#include "offshore_gnc/ros/diagnostics.h"
+#include "offshore_gnc/sim/navigation.h"
+#include "ros_sim_common.h"
+
+namespace offshore_gnc {
+
+class GpsNavigationNodelet : public nodelet::Nodelet {
+  void onInit() override {
+    ros::NodeHandle& nh = getNodeHandle();
+    ros_util::ParamReader p(getPrivateNodeHandle());
+    geo::LatLonAlt o;
+    sim::GpsNavigatorConfig cfg;
+    try {
+      o.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -89, 89);
+      o.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
+      o.alt_m = p.number("origin/altitude", 0.0, -500, 9000);
+      const auto a = p.numbers("antenna", {0.0, 0.0, -2.5}, 3, -50, 50);
+      cfg.antenna = {a[0], a[1], a[2]};
+      cfg.heading_timeout = p.number("heading_timeout", cfg.heading_timeout, 0.01, 60);
+      cfg.velocity_filter = p.number("velocity_filter", cfg.velocity_filter, 0, 60);
+      base_frame_ = p.text("base_frame", "usv/base_link");
+      world_frame_ = p.text("world_frame", "map");
+      nav_ = std::make_unique<sim::GpsNavigator>(o, cfg);
+    } catch (const ConfigError& e) {
+      NODELET_FATAL("%s", e.what());
+      throw;
+    }
+    odom_pub_ = nh.advertise<nav_msgs::Odometry>("/usv/odom", 10);
+    heading_sub_ = nh.subscribe("/usv_heading", 10, &GpsNavigationNodelet::onHeading, this);
+    gps_sub_ = nh.subscribe("/usv_gps", 10, &GpsNavigationNodelet::onFix, this);
+    updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
+    updater_->setHardwareID("gps_navigation");
+    updater_->add("navigation", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+      s.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+      std::lock_guard<std::mutex> l(mutex_);
+      ros_util::addCounters(s, nav_->counters(), {"bad_fix", "bad_heading", "fix_without_heading"});
+    });
+    diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
+  }
+
+  void onHeading(const geometry_msgs::QuaternionStamped::ConstPtr& m) {
+    const auto& q = m->quaternion;
+    double yaw_enu = NAN;
+    if (std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w) &&
+        q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w > 1e-6) {
+      double r, p;
+      tf2::Matrix3x3(tf2::Quaternion(q.x, q.y, q.z, q.w)).getRPY(r, p, yaw_enu);
+    }
+    std::lock_guard<std::mutex> l(mutex_);
+    if (!nav_->heading(m->header.stamp.toSec(), geo::enuYawToNed(yaw_enu)))
+      NODELET_ERROR_THROTTLE(1.0, "rejected /usv_heading: not a finite, non-zero quaternion");
+  }
+
+  void onFix(const sensor_msgs::NavSatFix::ConstPtr& m) {
+    std::optional<VehicleState> s;
+    {
+      std::lock_guard<std::mutex> l(mutex_);
+      if (m->status.status < sensor_msgs::NavSatStatus::STATUS_FIX) {
+        NODELET_WARN_THROTTLE(5.0, "GPS reports no fix");
+        return;
+      }
+      s = nav_->fix(m->header.stamp.toSec(), {m->latitude, m->longitude, m->altitude});
+    }
+    if (!s) {
+      NODELET_WARN_THROTTLE(1.0, "unusable /usv_gps fix (NaN, stale, or no heading within the timeout)");
+      return;
+    }
+    auto o = sim_ros::toOdometry(*s, world_frame_, base_frame_);
+    o.header.stamp = m->header.stamp;
+    const double v = m->position_covariance_type != sensor_msgs::NavSatFix::COVARIANCE_TYPE_UNKNOWN
+                         ? m->position_covariance[0]
+                         : 1.0;
+    o.pose.covariance[0] = o.pose.covariance[7] = v;
+    odom_pub_.publish(o);
+    tf_.sendTransform(sim_ros::toTransform(o));
+  }
+
+  std::mutex mutex_;
+  std::unique_ptr<sim::GpsNavigator> nav_;
+  std::string base_frame_, world_frame_;
+  ros::Publisher odom_pub_;
+  ros::Subscriber gps_sub_, heading_sub_;
+  tf2_ros::TransformBroadcaster tf_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer diag_timer_;
+};
+
+}  // namespace offshore_gnc
+
+PLUGINLIB_EXPORT_CLASS(offshore_gnc::GpsNavigationNodelet, nodelet::Nodelet)

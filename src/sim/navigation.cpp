@@ -1,0 +1,64 @@
+// GPS-compass navigation: pose from the fix and heading, velocity by filtered differences of fixes.
+#include "offshore_gnc/sim/navigation.h"
+
+#include <cmath>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace sim {
+
+GpsNavigator::GpsNavigator(const geo::LatLonAlt& origin, const GpsNavigatorConfig& cfg) : frame_(origin), cfg_(cfg) {
+  requireRange("heading_timeout", cfg.heading_timeout, 1e-3, 60);
+  requireRange("velocity_filter", cfg.velocity_filter, 0, 60);
+  for (int i = 0; i < 3; ++i) requireRange("antenna", cfg.antenna[i], -50, 50);
+}
+
+bool GpsNavigator::heading(double t, double yaw) {
+  if (!std::isfinite(t) || !std::isfinite(yaw)) {
+    counters_.increment("bad_heading");
+    return false;
+  }
+  if (t > heading_t_ && heading_t_ > -1e299 && t - heading_t_ < 5.0)
+    yaw_rate_ = angleDiff(yaw, yaw_) / (t - heading_t_);
+  heading_t_ = t;
+  yaw_ = wrapAngle(yaw);
+  return true;
+}
+
+std::optional<VehicleState> GpsNavigator::fix(double t, const geo::LatLonAlt& p) {
+  if (!std::isfinite(t) || !std::isfinite(p.lat_deg) || !std::isfinite(p.lon_deg) || std::abs(p.lat_deg) > 90 ||
+      std::abs(p.lon_deg) > 180) {
+    counters_.increment("bad_fix");
+    return std::nullopt;
+  }
+  if (std::abs(t - heading_t_) > cfg_.heading_timeout) {
+    counters_.increment("fix_without_heading");
+    return std::nullopt;
+  }
+  VehicleState s;
+  s.t = t;
+  s.yaw = yaw_;
+  s.angular_rate.z() = yaw_rate_;
+  const Eigen::Vector3d ant = frame_.toNed(p);
+  const double c = std::cos(yaw_), sn = std::sin(yaw_);
+  // the vessel's reference point is the antenna minus its lever arm; 3-DOF: on the surface
+  s.position = {ant.x() - (c * cfg_.antenna.x() - sn * cfg_.antenna.y()),
+                ant.y() - (sn * cfg_.antenna.x() + c * cfg_.antenna.y()), 0.0};
+  if (last_ && t > last_->t) {
+    const double dt = t - last_->t;
+    const Eigen::Vector2d v_ned = (s.position - last_->position).head<2>() / dt;
+    const Eigen::Vector2d v_body(c * v_ned.x() + sn * v_ned.y(), -sn * v_ned.x() + c * v_ned.y());
+    const double a = cfg_.velocity_filter > 0 ? 1.0 - std::exp(-dt / cfg_.velocity_filter) : 1.0;
+    s.velocity.head<2>() = last_->velocity.head<2>() + a * (v_body - last_->velocity.head<2>());
+  } else if (last_ && t <= last_->t) {
+    counters_.increment("stale_fix");
+    return std::nullopt;
+  }
+  last_ = s;
+  return s;
+}
+
+}  // namespace sim
+}  // namespace offshore_gnc

@@ -1,0 +1,186 @@
+#pragma once
+// ROS side shared by the simulator and navigation nodelets: the simulation thread that owns /clock, and the
+// conversions from the cores' NED / body-FRD state to REP-103 messages (map ENU, base_link FLU).
+#include <geometry_msgs/Quaternion.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <std_msgs/UInt32.h>
+#include <tf2/LinearMath/Quaternion.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <thread>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/models/state.h"
+#include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/sim/scenario.h"
+
+namespace offshore_gnc {
+namespace sim_ros {
+
+// The parameters every simulator nodelet reads: scenario file, time control, step and seed.
+struct RunSettings {
+  sim::Scenario scenario;
+  double rate = 1.0, dt = 0.01;
+  bool lockstep = false;
+  std::uint64_t seed = 1;
+};
+inline RunSettings readRunSettings(const ros_util::ParamReader& p, int default_seed) {
+  RunSettings r;
+  const std::string path = p.text("scenario", "");
+  if (path.empty()) throw ConfigError("parameter '~scenario' (path of the scenario file) is missing");
+  r.scenario = sim::loadScenario(path);
+  r.rate = p.number("rate", 1.0, 0.0, 10000.0);
+  r.lockstep = p.flag("lockstep", false);
+  r.dt = p.number("dt", 0.01, 1e-4, 0.1);
+  r.seed = static_cast<std::uint64_t>(p.integer("seed", default_seed, 0, 1 << 30));
+  return r;
+}
+
+// Orientation of a FLU body in the ENU map from NED/FRD Euler angles.
+inline geometry_msgs::Quaternion enuQuaternion(double roll, double pitch, double yaw_ned) {
+  tf2::Quaternion q;
+  q.setRPY(roll, -pitch, geo::nedYawToEnu(yaw_ned));
+  geometry_msgs::Quaternion m;
+  m.x = q.x();
+  m.y = q.y();
+  m.z = q.z();
+  m.w = q.w();
+  return m;
+}
+
+inline nav_msgs::Odometry toOdometry(const VehicleState& s, const std::string& frame, const std::string& child) {
+  nav_msgs::Odometry o;
+  o.header.stamp = ros::Time(s.t);
+  o.header.frame_id = frame;
+  o.child_frame_id = child;
+  const Eigen::Vector3d p = geo::nedToEnu(s.position);
+  o.pose.pose.position.x = p.x();
+  o.pose.pose.position.y = p.y();
+  o.pose.pose.position.z = p.z();
+  o.pose.pose.orientation = enuQuaternion(s.roll, s.pitch, s.yaw);
+  o.twist.twist.linear.x = s.velocity.x();  // body FRD -> FLU
+  o.twist.twist.linear.y = -s.velocity.y();
+  o.twist.twist.linear.z = -s.velocity.z();
+  o.twist.twist.angular.x = s.angular_rate.x();
+  o.twist.twist.angular.y = -s.angular_rate.y();
+  o.twist.twist.angular.z = -s.angular_rate.z();
+  return o;
+}
+
+inline geometry_msgs::TransformStamped toTransform(const nav_msgs::Odometry& o) {
+  geometry_msgs::TransformStamped t;
+  t.header = o.header;
+  t.child_frame_id = o.child_frame_id;
+  t.transform.translation.x = o.pose.pose.position.x;
+  t.transform.translation.y = o.pose.pose.position.y;
+  t.transform.translation.z = o.pose.pose.position.z;
+  t.transform.rotation = o.pose.pose.orientation;
+  return t;
+}
+
+// Static sensor mount: body FLU -> sensor. `frd` selects a sensor frame that is itself x forward, y starboard,
+// z down (the sonar head, SonarBeam.msg), otherwise the sensor frame is FLU like the body.
+inline geometry_msgs::TransformStamped mountTransform(const std::string& base, const std::string& sensor,
+                                                      const Eigen::Vector3d& mount_frd, double yaw_frd, bool frd) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros::Time(0);
+  t.header.frame_id = base;
+  t.child_frame_id = sensor;
+  t.transform.translation.x = mount_frd.x();
+  t.transform.translation.y = -mount_frd.y();
+  t.transform.translation.z = -mount_frd.z();
+  tf2::Quaternion q;
+  q.setRPY(frd ? kPi : 0.0, 0.0, -yaw_frd);
+  t.transform.rotation.x = q.x();
+  t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z();
+  t.transform.rotation.w = q.w();
+  return t;
+}
+
+// Runs the simulation step on its own thread and owns /clock. rate > 0: that many times real time; rate = 0:
+// as fast as the CPU allows; lockstep: only the steps requested on `sim/step` (std_msgs/UInt32), for tests
+// that need every step to be seen. `step` is called with the simulation mutex held.
+class SimRunner {
+ public:
+  SimRunner(ros::NodeHandle& nh, double dt, double rate, bool lockstep, std::function<double()> step)
+      : dt_(dt), rate_(rate), lockstep_(lockstep), step_(std::move(step)) {
+    // latched: a node that starts while the simulation waits in lockstep still learns the current time
+    clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
+    if (lockstep_)
+      step_sub_ = nh.subscribe<std_msgs::UInt32>("sim/step", 10, [this](const std_msgs::UInt32ConstPtr& m) {
+        std::lock_guard<std::mutex> l(wake_mutex_);
+        pending_ += m->data;
+        wake_.notify_all();
+      });
+  }
+  ~SimRunner() { stop(); }
+  void start() { thread_ = std::thread([this] { run(); }); }
+  void stop() {
+    running_ = false;
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+  std::mutex& mutex() { return mutex_; }
+  double realTimeFactor() const { return rtf_.load(); }
+
+ private:
+  void run() {
+    using clk = std::chrono::steady_clock;
+    const auto w0 = clk::now();
+    double t = 0.0;
+    auto last_report = w0;
+    double t_report = 0.0;
+    publishClock(0.0);
+    while (running_ && ros::ok()) {
+      if (lockstep_) {
+        std::unique_lock<std::mutex> l(wake_mutex_);
+        wake_.wait_for(l, std::chrono::milliseconds(100), [this] { return pending_ > 0 || !running_; });
+        if (pending_ == 0) continue;
+        --pending_;
+      }
+      {
+        std::lock_guard<std::mutex> l(mutex_);
+        t = step_();
+      }
+      publishClock(t);
+      if (rate_ > 0 && !lockstep_)
+        std::this_thread::sleep_until(w0 + std::chrono::duration_cast<clk::duration>(std::chrono::duration<double>(t / rate_)));
+      const auto now = clk::now();
+      const double wall = std::chrono::duration<double>(now - last_report).count();
+      if (wall > 1.0) {
+        rtf_ = (t - t_report) / wall;
+        last_report = now;
+        t_report = t;
+      }
+    }
+  }
+  void publishClock(double t) {
+    rosgraph_msgs::Clock c;
+    c.clock = ros::Time(t);
+    clock_pub_.publish(c);
+  }
+
+  double dt_, rate_;
+  bool lockstep_;
+  std::function<double()> step_;
+  ros::Publisher clock_pub_;
+  ros::Subscriber step_sub_;
+  std::thread thread_;
+  std::mutex mutex_, wake_mutex_;
+  std::condition_variable wake_;
+  unsigned long pending_ = 0;
+  std::atomic<bool> running_{true};
+  std::atomic<double> rtf_{0.0};
+};
+
+}  // namespace sim_ros
+}  // namespace offshore_gnc

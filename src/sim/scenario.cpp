@@ -1,0 +1,239 @@
+// Scenario loader (yaml-cpp). Strict: unknown keys, missing values, out-of-range numbers and impossible
+// geometry are errors naming the key, because a typo in a scenario silently changes a test run otherwise.
+#include "offshore_gnc/sim/scenario.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace sim {
+
+namespace {
+constexpr double kMaxCoord = 1e5;  // 100 km around the origin
+
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw ConfigError("scenario '" + source_ + "': key '" + key + "' " + what);
+  }
+  void keys(const YAML::Node& n, const std::string& path, const std::set<std::string>& allowed) const {
+    if (!n.IsMap()) fail(path, "must be a mapping");
+    for (const auto& kv : n) {
+      const std::string k = kv.first.as<std::string>();
+      if (!allowed.count(k)) fail(path.empty() ? k : path + "." + k, "is not a known key (typo?)");
+    }
+  }
+  double number(const YAML::Node& n, const std::string& path, const std::string& key, double lo, double hi,
+                const double* def = nullptr) const {
+    const std::string full = path.empty() ? key : path + "." + key;
+    const YAML::Node v = n[key];
+    if (!v) {
+      if (def) return *def;
+      fail(full, "is missing");
+    }
+    double x;
+    try {
+      x = v.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(full, "must be a number");
+    }
+    try {
+      return requireRange(full, x, lo, hi);
+    } catch (const ConfigError& e) {
+      throw ConfigError("scenario '" + source_ + "': " + e.what());
+    }
+  }
+  double opt(const YAML::Node& n, const std::string& path, const std::string& key, double def, double lo,
+             double hi) const {
+    return number(n, path, key, lo, hi, &def);
+  }
+  std::string text(const YAML::Node& n, const std::string& path, const std::string& key) const {
+    const YAML::Node v = n[key];
+    if (!v || !v.IsScalar()) fail(path.empty() ? key : path + "." + key, "is missing or not text");
+    return v.as<std::string>();
+  }
+
+ private:
+  std::string source_;
+};
+
+std::string idx(const std::string& list, std::size_t i) { return list + "[" + std::to_string(i) + "]"; }
+}  // namespace
+
+Scenario parseScenario(const std::string& yaml_text, const std::string& base_dir, const std::string& source) {
+  Reader r(source);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("scenario '" + source + "': not valid YAML: " + e.what());
+  }
+  if (!root || !root.IsMap()) throw ConfigError("scenario '" + source + "': must be a YAML mapping");
+  // "mission" (expected outcome, time limit) is the mission job's section, checked by scenario_check
+  r.keys(root, "", {"name", "origin", "current", "usv", "auv", "obstacles", "targets", "walls", "map", "wind",
+                   "waves", "mission"});
+  Scenario s;
+  s.name = r.text(root, "", "name");
+
+  const YAML::Node o = root["origin"];
+  if (!o) r.fail("origin", "is missing");
+  r.keys(o, "origin", {"latitude", "longitude", "altitude"});
+  s.origin.lat_deg = r.number(o, "origin", "latitude", -89.0, 89.0);
+  s.origin.lon_deg = r.number(o, "origin", "longitude", -180.0, 180.0);
+  s.origin.alt_m = r.opt(o, "origin", "altitude", 0.0, -500.0, 9000.0);
+
+  if (const YAML::Node c = root["current"]) {
+    r.keys(c, "current", {"north", "east", "variation", "seed"});
+    s.current.north = r.opt(c, "current", "north", 0.0, -5.0, 5.0);
+    s.current.east = r.opt(c, "current", "east", 0.0, -5.0, 5.0);
+    s.current.variation = r.opt(c, "current", "variation", 0.0, 0.0, 2.0);
+    s.current.seed = static_cast<std::uint64_t>(r.opt(c, "current", "seed", 1.0, 0.0, 4294967295.0));
+  }
+
+  if (const YAML::Node w = root["wind"]) {
+    r.keys(w, "wind", {"speed", "direction_deg", "gust"});
+    s.wind.speed = r.opt(w, "wind", "speed", 0.0, 0.0, 40.0);
+    s.wind.direction = deg2rad(r.opt(w, "wind", "direction_deg", 0.0, -360.0, 360.0));
+    s.wind.gust = r.opt(w, "wind", "gust", 0.0, 0.0, 20.0);
+  }
+  if (const YAML::Node w = root["waves"]) {
+    r.keys(w, "waves", {"amplitude", "heave_amplitude", "yaw_amplitude_deg", "frequency", "direction_deg"});
+    s.waves.amplitude = r.opt(w, "waves", "amplitude", 0.0, 0.0, 5.0);
+    s.waves.heave_amplitude = r.opt(w, "waves", "heave_amplitude", 0.0, 0.0, 5.0);
+    s.waves.yaw_amplitude = deg2rad(r.opt(w, "waves", "yaw_amplitude_deg", 0.0, 0.0, 30.0));
+    s.waves.frequency = r.opt(w, "waves", "frequency", 0.3, 0.1, 0.4);  // the band the notch filters target
+    s.waves.direction = deg2rad(r.opt(w, "waves", "direction_deg", 0.0, -360.0, 360.0));
+  }
+
+  const YAML::Node u = root["usv"];
+  if (!u) r.fail("usv", "is missing");
+  r.keys(u, "usv", {"start"});
+  if (!u["start"]) r.fail("usv.start", "is missing");
+  r.keys(u["start"], "usv.start", {"north", "east", "yaw_deg"});
+  s.usv.north = r.number(u["start"], "usv.start", "north", -kMaxCoord, kMaxCoord);
+  s.usv.east = r.number(u["start"], "usv.start", "east", -kMaxCoord, kMaxCoord);
+  s.usv.yaw = deg2rad(r.opt(u["start"], "usv.start", "yaw_deg", 0.0, -360.0, 360.0));
+
+  const YAML::Node a = root["auv"];
+  if (!a) r.fail("auv", "is missing");
+  r.keys(a, "auv", {"start", "coverage"});
+  if (!a["start"]) r.fail("auv.start", "is missing");
+  r.keys(a["start"], "auv.start", {"north", "east", "depth", "yaw_deg"});
+  s.auv.north = r.number(a["start"], "auv.start", "north", -kMaxCoord, kMaxCoord);
+  s.auv.east = r.number(a["start"], "auv.start", "east", -kMaxCoord, kMaxCoord);
+  s.auv.depth = r.number(a["start"], "auv.start", "depth", 0.0, 1000.0);
+  s.auv.yaw = deg2rad(r.opt(a["start"], "auv.start", "yaw_deg", 0.0, -360.0, 360.0));
+  if (const YAML::Node cov = a["coverage"]) {  // read by the AUV mission; checked here so typos surface early
+    r.keys(cov, "auv.coverage", {"north_min", "north_max", "east_min", "east_max", "depth", "spacing"});
+    const double n0 = r.number(cov, "auv.coverage", "north_min", -kMaxCoord, kMaxCoord);
+    r.number(cov, "auv.coverage", "north_max", n0 + 1e-3, kMaxCoord);
+    const double e0 = r.number(cov, "auv.coverage", "east_min", -kMaxCoord, kMaxCoord);
+    r.number(cov, "auv.coverage", "east_max", e0 + 1e-3, kMaxCoord);
+    r.number(cov, "auv.coverage", "depth", 0.0, 1000.0);
+    r.opt(cov, "auv.coverage", "spacing", 5.0, 0.5, 1000.0);
+  }
+
+  if (const YAML::Node obs = root["obstacles"]) {
+    if (!obs.IsSequence()) r.fail("obstacles", "must be a list");
+    for (std::size_t i = 0; i < obs.size(); ++i) {
+      const std::string p = idx("obstacles", i);
+      const std::string type = r.text(obs[i], p, "type");
+      const Eigen::Vector2d c(r.number(obs[i], p, "north", -kMaxCoord, kMaxCoord),
+                              r.number(obs[i], p, "east", -kMaxCoord, kMaxCoord));
+      if (type == "buoy") {
+        r.keys(obs[i], p, {"type", "north", "east", "radius", "height"});
+        s.world.buoys.push_back({c, r.number(obs[i], p, "radius", 0.05, 50.0), r.opt(obs[i], p, "height", 1.0, 0.05, 50.0)});
+      } else if (type == "vessel") {
+        r.keys(obs[i], p, {"type", "north", "east", "length", "width", "height", "yaw_deg"});
+        Vessel v;
+        v.centre = c;
+        v.length = r.number(obs[i], p, "length", 0.5, 400.0);
+        v.width = r.number(obs[i], p, "width", 0.2, 100.0);
+        v.height = r.opt(obs[i], p, "height", 2.0, 0.1, 60.0);
+        v.yaw = deg2rad(r.opt(obs[i], p, "yaw_deg", 0.0, -360.0, 360.0));
+        s.world.vessels.push_back(v);
+      } else {
+        r.fail(p + ".type", "= '" + type + "' must be 'buoy' or 'vessel'");
+      }
+    }
+  }
+  if (const YAML::Node tg = root["targets"]) {
+    if (!tg.IsSequence()) r.fail("targets", "must be a list");
+    for (std::size_t i = 0; i < tg.size(); ++i) {
+      const std::string p = idx("targets", i);
+      r.keys(tg[i], p, {"north", "east", "depth", "radius"});
+      Target t;
+      t.radius = r.number(tg[i], p, "radius", 0.05, 20.0);
+      t.position = {r.number(tg[i], p, "north", -kMaxCoord, kMaxCoord), r.number(tg[i], p, "east", -kMaxCoord, kMaxCoord),
+                    r.number(tg[i], p, "depth", t.radius, 1000.0)};  // a target sticking out of the water is impossible
+      s.world.targets.push_back(t);
+    }
+  }
+  if (const YAML::Node ws = root["walls"]) {
+    if (!ws.IsSequence()) r.fail("walls", "must be a list");
+    for (std::size_t i = 0; i < ws.size(); ++i) {
+      const std::string p = idx("walls", i);
+      r.keys(ws[i], p, {"north1", "east1", "north2", "east2"});
+      Wall w;
+      w.a = {r.number(ws[i], p, "north1", -kMaxCoord, kMaxCoord), r.number(ws[i], p, "east1", -kMaxCoord, kMaxCoord)};
+      w.b = {r.number(ws[i], p, "north2", -kMaxCoord, kMaxCoord), r.number(ws[i], p, "east2", -kMaxCoord, kMaxCoord)};
+      if ((w.b - w.a).norm() < 0.1) r.fail(p, "has zero length (its two ends coincide)");
+      s.world.walls.push_back(w);
+    }
+  }
+  if (const YAML::Node m = root["map"]) {
+    r.keys(m, "map", {"image", "resolution", "north", "east", "threshold"});
+    std::string img = r.text(m, "map", "image");
+    if (!img.empty() && img[0] != '/') img = base_dir + "/" + img;
+    if (!std::ifstream(img).good()) r.fail("map.image", "= '" + img + "' cannot be read");
+    s.map_image = img;
+    const double res = r.number(m, "map", "resolution", 0.01, 100.0);
+    const double n0 = r.number(m, "map", "north", -kMaxCoord, kMaxCoord);
+    const double e0 = r.number(m, "map", "east", -kMaxCoord, kMaxCoord);
+    const int thr = static_cast<int>(r.opt(m, "map", "threshold", 128.0, 1.0, 255.0));
+    try {
+      mapFromImage(img, res, n0, e0, thr, s.map, s.world.shorelines);
+    } catch (const ConfigError& e) {
+      r.fail("map.image", e.what());
+    }
+  }
+
+  // impossible geometry: vehicles starting inside an obstacle or on land
+  auto blocked = [&](const Eigen::Vector2d& p) -> std::string {
+    for (std::size_t i = 0; i < s.world.buoys.size(); ++i)
+      if ((p - s.world.buoys[i].centre).norm() < s.world.buoys[i].radius) return idx("obstacles buoy", i);
+    for (std::size_t i = 0; i < s.world.vessels.size(); ++i)
+      if (insidePolygon(vesselFootprint(s.world.vessels[i]), p)) return idx("obstacles vessel", i);
+    if (!s.map.empty() && s.map.occupied(p)) return "map (land)";
+    return "";
+  };
+  const std::string ub = blocked({s.usv.north, s.usv.east});
+  if (!ub.empty()) r.fail("usv.start", "lies inside " + ub);
+  const std::string ab = blocked({s.auv.north, s.auv.east});
+  if (!s.map.empty() && ab == "map (land)") r.fail("auv.start", "lies on land");
+  for (std::size_t i = 0; i < s.world.targets.size(); ++i)
+    if (!s.map.empty() && s.map.occupied(s.world.targets[i].position.head<2>()))
+      r.fail(idx("targets", i), "lies on land");
+  return s;
+}
+
+Scenario loadScenario(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError("scenario '" + path + "' cannot be read");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const auto slash = path.find_last_of('/');
+  return parseScenario(ss.str(), slash == std::string::npos ? "." : path.substr(0, slash), path);
+}
+
+}  // namespace sim
+}  // namespace offshore_gnc

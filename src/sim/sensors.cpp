@@ -1,0 +1,260 @@
+// Sensor simulators (GPS-compass, multi-layer LiDAR, mechanical imaging sonar, depth, AHRS, INS estimate).
+#include "offshore_gnc/sim/sensors.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace sim {
+
+namespace {
+constexpr double kGravity = 9.80665;
+
+Eigen::Vector2d rotate2(double yaw, const Eigen::Vector3d& body) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  return {c * body.x() - s * body.y(), s * body.x() + c * body.y()};
+}
+Eigen::Matrix3d bodyToNed(const VehicleState& s) {
+  return (Eigen::AngleAxisd(s.yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(s.pitch, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(s.roll, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+void requireRate(const char* name, double hz) { requireRange(name, hz, 1e-3, 1e4); }
+}  // namespace
+
+// ---------------------------------------------------------------- GPS-compass
+GpsCompass::GpsCompass(const GpsCompassConfig& cfg, const geo::LocalNed& frame, std::uint64_t seed)
+    : cfg_(cfg), frame_(frame), rng_(seed) {
+  requireRate("gps/rate", cfg.rate_hz);
+  requireRange("gps/position_sigma", cfg.position_sigma, 0, 100);
+  requireRange("gps/altitude_sigma", cfg.altitude_sigma, 0, 100);
+  requireRange("gps/heading_sigma", cfg.heading_sigma, 0, 1);
+}
+
+GpsCompassReading GpsCompass::measure(const VehicleState& s) {
+  const Eigen::Vector2d off = rotate2(s.yaw, cfg_.antenna);
+  Eigen::Vector3d p(s.position.x() + off.x(), s.position.y() + off.y(), s.position.z() + cfg_.antenna.z());
+  p.x() += cfg_.position_sigma * n_(rng_);
+  p.y() += cfg_.position_sigma * n_(rng_);
+  p.z() += cfg_.altitude_sigma * n_(rng_);
+  GpsCompassReading r;
+  r.t = s.t;
+  r.fix = frame_.toGeodetic(p);
+  r.heading = wrapAngle(s.yaw + cfg_.heading_sigma * n_(rng_));
+  r.position_sigma = cfg_.position_sigma;
+  r.heading_sigma = cfg_.heading_sigma;
+  return r;
+}
+
+// ---------------------------------------------------------------- LiDAR
+Eigen::Vector3d LidarScan::pointFrd(int layer, int beam) const {
+  const double r = ranges[static_cast<std::size_t>(layer) * beams + beam];
+  const double e = elevation[layer], a = azimuth[beam];
+  return {r * std::cos(e) * std::cos(a), r * std::cos(e) * std::sin(a), -r * std::sin(e)};
+}
+
+Lidar::Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed) : cfg_(cfg), world_(world), rng_(seed) {
+  requireRate("lidar/rate", cfg.rate_hz);
+  requireRange("lidar/layers", cfg.layers, 1, 64);
+  if (static_cast<int>(cfg.layer_elevation.size()) != cfg.layers)
+    throw ConfigError("parameter 'lidar/layer_elevation' must have one angle per layer");
+  for (double e : cfg.layer_elevation) requireRange("lidar/layer_elevation", e, -1.4, 1.4);
+  requireRange("lidar/aperture", cfg.aperture, 1e-3, 2 * kPi);
+  requireRange("lidar/step", cfg.step, 1e-4, 1.0);
+  requireRange("lidar/min_range", cfg.min_range, 0, 1e3);
+  requireRange("lidar/max_range", cfg.max_range, cfg.min_range + 1e-3, 1e4);
+  requireRange("lidar/range_sigma", cfg.range_sigma, 0, 10);
+  beams_ = static_cast<int>(std::floor(cfg.aperture / cfg.step + 1e-9)) + 1;
+}
+
+void Lidar::scan(const VehicleState& s, LidarScan& out) {
+  out.t = s.t;
+  out.layers = cfg_.layers;
+  out.beams = beams_;
+  out.ranges.assign(static_cast<std::size_t>(cfg_.layers) * beams_, std::numeric_limits<float>::quiet_NaN());
+  out.azimuth.resize(beams_);
+  out.elevation = cfg_.layer_elevation;
+  const Eigen::Vector2d off = rotate2(s.yaw, cfg_.mount);
+  const Eigen::Vector2d o(s.position.x() + off.x(), s.position.y() + off.y());
+  const double zs = s.position.z() + cfg_.mount.z();
+  // broad phase once per frame: only shapes within range of the sensor are tested per beam
+  scene_.build(world_, o, cfg_.max_range);
+  std::vector<double> tan_e(cfg_.layers), cos_e(cfg_.layers);
+  for (int l = 0; l < cfg_.layers; ++l) {
+    tan_e[l] = std::tan(cfg_.layer_elevation[l]);
+    cos_e[l] = std::cos(cfg_.layer_elevation[l]);
+  }
+  for (int b = 0; b < beams_; ++b) {
+    const double az = -cfg_.aperture / 2 + b * cfg_.step;
+    out.azimuth[b] = az;
+    const double h = s.yaw + cfg_.mount_yaw + az;
+    const Eigen::Vector2d d(std::cos(h), std::sin(h));
+    hits_.clear();
+    scene_.cast(o, d, cfg_.max_range, hits_);
+    if (hits_.empty()) continue;
+    std::sort(hits_.begin(), hits_.end(), [](const Hit2d& a, const Hit2d& c) { return a.distance < c.distance; });
+    for (int l = 0; l < cfg_.layers; ++l) {
+      // a beam aimed below the horizon ends on the water, which returns nothing (specular lake surface)
+      const double t_water = (tan_e[l] < 0 && zs < 0) ? zs / tan_e[l] : std::numeric_limits<double>::infinity();
+      for (const auto& hit : hits_) {
+        if (hit.distance > t_water) break;
+        const double z = zs - hit.distance * tan_e[l];
+        if (z < hit.top || z > hit.bottom) continue;  // passes over (or under) this object
+        const double r = hit.distance / cos_e[l] + cfg_.range_sigma * n_(rng_);
+        if (r >= cfg_.min_range && r <= cfg_.max_range)
+          out.ranges[static_cast<std::size_t>(l) * beams_ + b] = static_cast<float>(r);
+        break;
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------- imaging sonar
+Sonar::Sonar(const SonarConfig& cfg, const World& world, std::uint64_t seed)
+    : cfg_(cfg), world_(world), angle_(-cfg.sector / 2), rng_(seed) {
+  requireRate("sonar/ping_rate", cfg.ping_rate_hz);
+  requireRange("sonar/step", cfg.step, 1e-3, 0.5);
+  requireRange("sonar/sector", cfg.sector, cfg.step, 2 * kPi);
+  requireRange("sonar/range", cfg.range, 0.5, 300);
+  requireRange("sonar/bins", cfg.bins, 8, 1500);
+  requireRange("sonar/beam_width", cfg.beam_width, 1e-3, 1.0);
+  requireRange("sonar/vertical_width", cfg.vertical_width, 1e-3, kPi);
+  requireRange("sonar/near_field", cfg.near_field, 0, cfg.range);
+  requireRange("sonar/noise_level", cfg.noise_level, 0, 255);
+}
+
+int Sonar::binOfRange(double r) const {
+  const double res = cfg_.range / cfg_.bins;
+  return static_cast<int>(std::floor(r / res));
+}
+
+void Sonar::ping(const VehicleState& s, SonarBeamReading& out) {
+  const double res = cfg_.range / cfg_.bins;
+  out.t = s.t;
+  out.bearing = wrapTwoPi(angle_);
+  out.beam_width = cfg_.beam_width;
+  out.range_resolution = res;
+  out.range_offset = res / 2;
+  out.head_status = kHeadReady | kMotorOn | (direction_ > 0 ? kScanCw : 0) | (reversed_ ? kSectorReverse : 0);
+  out.intensities.resize(cfg_.bins);
+
+  std::vector<double> level(cfg_.bins);
+  for (int i = 0; i < cfg_.bins; ++i) {
+    const double r = (i + 0.5) * res;
+    // speckle: the intensity of a Rayleigh-distributed echo amplitude is exponential
+    double v = -cfg_.noise_level * std::log(1.0 - u_(rng_));
+    if (r < cfg_.near_field) v += 160.0 * std::exp(-r / (0.3 * cfg_.near_field)) * (0.5 + u_(rng_));
+    level[i] = v;
+  }
+  const Eigen::Vector2d off = rotate2(s.yaw, cfg_.mount);
+  const Eigen::Vector3d head(s.position.x() + off.x(), s.position.y() + off.y(), s.position.z() + cfg_.mount.z());
+  const double h = s.yaw + angle_;
+  const Eigen::Vector2d d(std::cos(h), std::sin(h));
+  auto echo = [&](double r, double strength, int thickness) {
+    const int b0 = binOfRange(r);
+    if (b0 < 0 || b0 >= cfg_.bins) return;
+    for (int k = 0; k < thickness && b0 + k < cfg_.bins; ++k)
+      level[b0 + k] += strength * std::exp(-0.03 * r) * (0.8 + 0.4 * u_(rng_)) / (1 + k);
+    // acoustic shadow behind a strong reflector
+    for (int k = b0 + thickness; k < cfg_.bins; ++k) level[k] *= 0.3;
+  };
+  double nearest_wall = cfg_.range;
+  for (const auto& w : world_.walls) {
+    const double t = raySegment(head.head<2>(), d, w.a, w.b);
+    if (t >= 0 && t < nearest_wall) nearest_wall = t;
+  }
+  for (const auto& tg : world_.targets) {
+    const Eigen::Vector3d v = tg.position - head;
+    const double dh = v.head<2>().norm();
+    const double dist = v.norm();
+    if (dist - tg.radius > cfg_.range || dist - tg.radius >= nearest_wall || dh < 1e-6) continue;
+    const double off_h = std::abs(angleDiff(std::atan2(v.y(), v.x()), h));
+    const double off_v = std::abs(std::atan2(v.z(), dh));
+    const double half = std::atan2(tg.radius, dh);
+    if (off_h > cfg_.beam_width / 2 + half || off_v > cfg_.vertical_width / 2 + half) continue;
+    echo(dist - tg.radius, 230.0, std::max(2, static_cast<int>(tg.radius / res)));
+  }
+  if (nearest_wall < cfg_.range) echo(nearest_wall, 200.0, 3);
+  for (int i = 0; i < cfg_.bins; ++i) out.intensities[i] = static_cast<std::uint8_t>(std::clamp(level[i], 0.0, 255.0));
+
+  // step the head: sector scan back and forth
+  reversed_ = false;
+  angle_ += direction_ * cfg_.step;
+  if (std::abs(angle_) > cfg_.sector / 2 + 1e-9) {
+    direction_ = -direction_;
+    angle_ += 2 * direction_ * cfg_.step;
+    reversed_ = true;
+  }
+}
+
+// ---------------------------------------------------------------- depth
+DepthSensor::DepthSensor(const DepthConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) {
+  requireRate("depth/rate", cfg.rate_hz);
+  requireRange("depth/sigma", cfg.sigma_pa, 0, 1e5);
+  requireRange("depth/water_density", cfg.water_density, 900, 1100);
+}
+
+DepthReading DepthSensor::measure(const VehicleState& s) {
+  const double depth = std::max(0.0, s.position.z());
+  return {s.t, cfg_.atmosphere_pa + cfg_.water_density * kGravity * depth + cfg_.sigma_pa * n_(rng_), cfg_.sigma_pa};
+}
+
+double DepthSensor::depthOf(double p) const { return (p - cfg_.atmosphere_pa) / (cfg_.water_density * kGravity); }
+
+// ---------------------------------------------------------------- AHRS
+Ahrs::Ahrs(const AhrsConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) {
+  requireRate("ahrs/rate", cfg.rate_hz);
+  requireRange("ahrs/attitude_sigma", cfg.attitude_sigma, 0, 1);
+  requireRange("ahrs/heading_sigma", cfg.heading_sigma, 0, 1);
+  requireRange("ahrs/gyro_sigma", cfg.gyro_sigma, 0, 1);
+  requireRange("ahrs/accel_sigma", cfg.accel_sigma, 0, 10);
+}
+
+AhrsReading Ahrs::measure(const VehicleState& s, const Eigen::Vector3d& accel_body) {
+  AhrsReading r;
+  r.t = s.t;
+  r.roll = wrapAngle(s.roll + cfg_.attitude_sigma * n_(rng_));
+  r.pitch = wrapAngle(s.pitch + cfg_.attitude_sigma * n_(rng_));
+  r.yaw = wrapAngle(s.yaw + cfg_.heading_sigma * n_(rng_));
+  const Eigen::Vector3d noise_w(n_(rng_), n_(rng_), n_(rng_)), noise_a(n_(rng_), n_(rng_), n_(rng_));
+  r.angular_rate = s.angular_rate + cfg_.gyro_sigma * noise_w;
+  // accelerometers measure acceleration minus gravity (NED gravity is +z)
+  r.specific_force = accel_body - bodyToNed(s).transpose() * Eigen::Vector3d(0, 0, kGravity) + cfg_.accel_sigma * noise_a;
+  r.attitude_sigma = cfg_.attitude_sigma;
+  r.heading_sigma = cfg_.heading_sigma;
+  r.gyro_sigma = cfg_.gyro_sigma;
+  r.accel_sigma = cfg_.accel_sigma;
+  return r;
+}
+
+// ---------------------------------------------------------------- INS estimate
+InsEstimate::InsEstimate(const InsConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) {
+  requireRange("ins/position_sigma", cfg.position_sigma, 0, 100);
+  requireRange("ins/drift", cfg.drift_per_sqrt_s, 0, 10);
+  requireRange("ins/depth_sigma", cfg.depth_sigma, 0, 10);
+  requireRange("ins/yaw_sigma", cfg.yaw_sigma, 0, 1);
+  requireRange("ins/velocity_sigma", cfg.velocity_sigma, 0, 10);
+}
+
+VehicleState InsEstimate::estimate(const VehicleState& truth) {
+  if (last_t_ >= 0 && truth.t > last_t_) {
+    const double sq = std::sqrt(truth.t - last_t_);
+    drift_ += cfg_.drift_per_sqrt_s * sq * Eigen::Vector2d(n_(rng_), n_(rng_));
+  }
+  last_t_ = truth.t;
+  VehicleState e = truth;
+  e.position.x() += drift_.x() + cfg_.position_sigma * n_(rng_);
+  e.position.y() += drift_.y() + cfg_.position_sigma * n_(rng_);
+  e.position.z() += cfg_.depth_sigma * n_(rng_);
+  e.yaw = wrapAngle(truth.yaw + cfg_.yaw_sigma * n_(rng_));
+  e.velocity += cfg_.velocity_sigma * Eigen::Vector3d(n_(rng_), n_(rng_), n_(rng_));
+  return e;
+}
+
+}  // namespace sim
+}  // namespace offshore_gnc

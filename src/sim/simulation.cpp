@@ -1,0 +1,140 @@
+// Vehicle simulations: plant integration on a fixed step and sensor sampling at each sensor's own rate.
+#include "offshore_gnc/sim/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace sim {
+
+namespace {
+long everySteps(const char* name, double rate_hz, double dt) {
+  requireRange(name, rate_hz, 1e-3, 0.5 / dt);  // at most one sample per step
+  return std::max(1L, std::lround(1.0 / (rate_hz * dt)));
+}
+}  // namespace
+
+models::EnvironmentParams environmentOf(const Scenario& sc) {
+  models::EnvironmentParams e;
+  e.current_north = sc.current.north;
+  e.current_east = sc.current.east;
+  e.current_variation = sc.current.variation;
+  e.seed = sc.current.seed;
+  e.wind_speed = sc.wind.speed;
+  e.wind_direction = sc.wind.direction;
+  e.wind_gust = sc.wind.gust;
+  e.wave_amplitude = sc.waves.amplitude;
+  e.wave_heave_amplitude = sc.waves.heave_amplitude;
+  e.wave_yaw_amplitude = sc.waves.yaw_amplitude;
+  e.wave_frequency = sc.waves.frequency;
+  e.wave_direction = sc.waves.direction;
+  return e;
+}
+
+Eigen::VectorXd mixToThrusters(const Eigen::MatrixXd& tcm, const AuvCommand& c) {
+  const Eigen::Vector4d in(c.surge, c.sway, c.heave, c.yaw);
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(tcm.cols());
+  for (int axis = 0; axis < 4; ++axis) {
+    const double scale = tcm.row(axis).cwiseAbs().maxCoeff();
+    if (scale > 1e-9) out += (in[axis] / scale) * tcm.row(axis).transpose();
+  }
+  return out.cwiseMax(-1.0).cwiseMin(1.0);
+}
+
+std::optional<AuvCommand> fromRcChannels(const std::vector<std::uint16_t>& ch) {
+  if (ch.size() < 6) return std::nullopt;
+  for (std::size_t i = 2; i < 6; ++i)
+    if (ch[i] < 1100 || ch[i] > 1900) return std::nullopt;
+  auto n = [&](int c) { return (ch[c - 1] - 1500.0) / 400.0; };
+  return AuvCommand{n(5), n(6), n(3), n(4)};
+}
+
+// ---------------------------------------------------------------- USV
+UsvSimulation::UsvSimulation(const Scenario& sc, const Config& cfg)
+    : cfg_(cfg),
+      env_(environmentOf(sc)),
+      model_(cfg.usv),
+      gps_(cfg.gps, geo::LocalNed(sc.origin), cfg.seed * 7919 + 1),
+      lidar_(cfg.lidar, sc.world, cfg.seed * 7919 + 2) {
+  requireRange("dt", cfg.dt, 1e-4, 0.1);
+  gps_every_ = everySteps("gps/rate", cfg.gps.rate_hz, cfg.dt);
+  lidar_every_ = everySteps("lidar/rate", cfg.lidar.rate_hz, cfg.dt);
+  VehicleState s;
+  s.position = {sc.usv.north, sc.usv.east, 0.0};
+  s.yaw = wrapAngle(sc.usv.yaw);
+  model_.reset(s);
+}
+
+bool UsvSimulation::setCommand(const models::UsvCommand& c) { return model_.setCommand(c); }
+
+const UsvSimulation::Outputs& UsvSimulation::step() {
+  model_.step(cfg_.dt, env_);
+  ++step_;
+  out_.gps.reset();
+  out_.lidar = false;
+  if (step_ % gps_every_ == 0) out_.gps = gps_.measure(model_.state());
+  if (cfg_.lidar_on && step_ % lidar_every_ == 0) {
+    lidar_.scan(model_.state(), scan_);
+    out_.lidar = true;
+  }
+  return out_;
+}
+
+// ---------------------------------------------------------------- AUV
+AuvSimulation::AuvSimulation(const Scenario& sc, const Config& cfg)
+    : cfg_(cfg),
+      env_(environmentOf(sc)),
+      model_(cfg.auv),
+      sonar_(cfg.sonar, sc.world, cfg.seed * 7919 + 3),
+      depth_(cfg.depth, cfg.seed * 7919 + 4),
+      ahrs_(cfg.ahrs, cfg.seed * 7919 + 5),
+      ins_(cfg.ins, cfg.seed * 7919 + 6) {
+  requireRange("dt", cfg.dt, 1e-4, 0.1);
+  sonar_every_ = everySteps("sonar/ping_rate", cfg.sonar.ping_rate_hz, cfg.dt);
+  depth_every_ = everySteps("depth/rate", cfg.depth.rate_hz, cfg.dt);
+  ahrs_every_ = everySteps("ahrs/rate", cfg.ahrs.rate_hz, cfg.dt);
+  odom_every_ = everySteps("odom_rate", cfg.odom_rate_hz, cfg.dt);
+  counters_.increment("rejected_commands", 0);  // listed in diagnostics from the start
+  VehicleState s;
+  s.position = {sc.auv.north, sc.auv.east, sc.auv.depth};
+  s.yaw = wrapAngle(sc.auv.yaw);
+  model_.reset(s);
+}
+
+bool AuvSimulation::setThrusters(const std::vector<double>& sp) {
+  return model_.setCommand(Eigen::Map<const Eigen::VectorXd>(sp.data(), static_cast<Eigen::Index>(sp.size())));
+}
+
+bool AuvSimulation::setRcChannels(const std::vector<std::uint16_t>& ch) {
+  const auto c = fromRcChannels(ch);
+  if (!c) {
+    counters_.increment("rejected_commands");
+    return false;
+  }
+  return model_.setCommand(mixToThrusters(model_.tcm(), *c));
+}
+
+const AuvSimulation::Outputs& AuvSimulation::step() {
+  const VehicleState before = model_.state();
+  model_.step(cfg_.dt, env_);
+  const VehicleState& s = model_.state();
+  ++step_;
+  out_.ahrs.reset();
+  out_.depth.reset();
+  out_.odom.reset();
+  out_.sonar = false;
+  if (step_ % ahrs_every_ == 0) out_.ahrs = ahrs_.measure(s, (s.velocity - before.velocity) / cfg_.dt);
+  if (step_ % depth_every_ == 0) out_.depth = depth_.measure(s);
+  if (step_ % odom_every_ == 0) out_.odom = ins_.estimate(s);
+  if (cfg_.sonar_on && step_ % sonar_every_ == 0) {
+    sonar_.ping(s, beam_);
+    out_.sonar = true;
+  }
+  return out_;
+}
+
+}  // namespace sim
+}  // namespace offshore_gnc

@@ -1,0 +1,215 @@
+// UsvSim: the USV simulator for the USV's own master. Owns /clock, integrates the USV on a fixed step,
+// publishes ground truth (metrics only), the GPS-compass (/usv_gps, /usv_heading), the LiDAR point cloud and
+// the scenario's map grid; takes /usv/joystick_cmd, with /usv/manual_cmd taking priority while it is fresh.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <geometry_msgs/QuaternionStamped.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <nodelet/nodelet.h>
+#include <pluginlib/class_list_macros.hpp>
+#include <sensor_msgs/NavSatFix.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/point_cloud2_iterator.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+
+#include <algorithm>
+#include <memory>
+
+#include "offshore_gnc/JoystickCommand.h"
+#include "offshore_gnc/WaterjetStatus.h"
+#include "offshore_gnc/ros/diagnostics.h"
+#include "offshore_gnc/models/params_yaml.h"
+#include "offshore_gnc/sim/simulation.h"
+#include "ros_sim_common.h"
+
+namespace offshore_gnc {
+
+class UsvSimNodelet : public nodelet::Nodelet {
+  void onInit() override {
+    ros::NodeHandle& nh = getNodeHandle();
+    ros_util::ParamReader p(getPrivateNodeHandle());
+    sim::UsvSimulation::Config cfg;
+    double rate = 1.0;
+    bool lockstep = false;
+    try {
+      sim_ros::RunSettings run = sim_ros::readRunSettings(p, 1);
+      scenario_ = std::move(run.scenario);
+      rate = run.rate;
+      lockstep = run.lockstep;
+      cfg.dt = run.dt;
+      cfg.seed = run.seed;
+      cfg.lidar_on = p.flag("lidar/enabled", true);
+      cfg.lidar.rate_hz = p.number("lidar/rate", cfg.lidar.rate_hz, 0.1, 100);
+      cfg.lidar.range_sigma = p.number("lidar/range_sigma", cfg.lidar.range_sigma, 0, 10);
+      const auto lm = p.numbers("lidar/mount", {1.5, 0.0, -1.0}, 3, -50, 50);
+      cfg.lidar.mount = {lm[0], lm[1], lm[2]};
+      cfg.gps.rate_hz = p.number("gps/rate", cfg.gps.rate_hz, 0.1, 100);
+      cfg.gps.position_sigma = p.number("gps/position_sigma", cfg.gps.position_sigma, 0, 100);
+      cfg.gps.heading_sigma = deg2rad(p.number("gps/heading_sigma_deg", rad2deg(cfg.gps.heading_sigma), 0, 45));
+      const auto gm = p.numbers("gps/antenna", {0.0, 0.0, -2.5}, 3, -50, 50);
+      cfg.gps.antenna = {gm[0], gm[1], gm[2]};
+      const std::string params = p.text("model_params", "");  // config/models/*.yaml (models module)
+      if (!params.empty()) cfg.usv = models::loadUsvParams(params);
+      cfg.usv.type = p.choice("model", "dynamic", {"dynamic", "nomoto"}) == "nomoto" ? models::UsvModelType::Nomoto
+                                                                                     : models::UsvModelType::Dynamic3Dof;
+      manual_timeout_ = p.number("manual_timeout", 1.0, 0.05, 60);
+      // /usv/waterjet/applied_cmd when the CAN gateway + emulator chain is in the loop (docs/architecture.md)
+      command_topic_ = p.text("command_topic", "/usv/joystick_cmd");
+      base_frame_ = p.text("base_frame", "usv/base_link");
+      sim_ = std::make_unique<sim::UsvSimulation>(scenario_, cfg);
+    } catch (const ConfigError& e) {
+      NODELET_FATAL("%s", e.what());
+      throw;
+    }
+
+    runner_ = std::make_unique<sim_ros::SimRunner>(getPrivateNodeHandle(), cfg.dt, rate, lockstep, [this] { return step(); });
+    truth_pub_ = nh.advertise<nav_msgs::Odometry>("/usv/ground_truth/odom", 10);
+    gps_pub_ = nh.advertise<sensor_msgs::NavSatFix>("/usv_gps", 10);
+    heading_pub_ = nh.advertise<geometry_msgs::QuaternionStamped>("/usv_heading", 10);
+    lidar_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/usv/lidar/points", 2);
+    map_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("/usv/map", 1, true);
+    jet_pub_ = nh.advertise<WaterjetStatus>("/usv/waterjet/status", 10);
+    auto_sub_ = nh.subscribe(command_topic_, 10, &UsvSimNodelet::onCommand, this);
+    manual_sub_ = nh.subscribe("/usv/manual_cmd", 10, &UsvSimNodelet::onManual, this);
+    if (!scenario_.map.empty()) map_pub_.publish(gridMessage());
+
+    static_tf_.sendTransform({sim_ros::mountTransform(base_frame_, "usv/lidar", cfg.lidar.mount, cfg.lidar.mount_yaw, false),
+                              sim_ros::mountTransform(base_frame_, "usv/gps", cfg.gps.antenna, 0.0, false)});
+
+    updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
+    updater_->setHardwareID("usv_simulator");
+    updater_->add("simulation", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+      s.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
+      s.add("real_time_factor", runner_->realTimeFactor());
+      ros_util::addCounters(s, sim_->counters(), {"rejected_commands", "clamped_commands"});
+      ros_util::addCounters(s, counters_, {});
+    });
+    diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
+
+    runner_->start();
+    NODELET_INFO("USV simulator: scenario '%s', %zu buoys, %zu vessels, %zu shoreline polygons, rate %g%s",
+                 scenario_.name.c_str(), scenario_.world.buoys.size(), scenario_.world.vessels.size(),
+                 scenario_.world.shorelines.size(), rate, lockstep ? " (lockstep)" : "");
+  }
+
+  ~UsvSimNodelet() override {
+    if (runner_) runner_->stop();
+  }
+
+  // Manual wins over autonomy while its last message is younger than manual_timeout (simulated time).
+  void onManual(const JoystickCommand::ConstPtr& m) {
+    std::lock_guard<std::mutex> l(runner_->mutex());
+    if (apply(*m)) last_manual_ = sim_->state().t;
+  }
+  void onCommand(const JoystickCommand::ConstPtr& m) {
+    std::lock_guard<std::mutex> l(runner_->mutex());
+    if (sim_->state().t - last_manual_ < manual_timeout_) {
+      counters_.increment("autonomy_overridden_by_manual");
+      return;
+    }
+    apply(*m);
+  }
+  bool apply(const JoystickCommand& m) {
+    if (sim_->setCommand({m.surge, m.sway, m.yaw})) return true;
+    NODELET_ERROR_THROTTLE(1.0, "rejected joystick command (surge %g, sway %g, yaw %g): not finite", m.surge, m.sway,
+                           m.yaw);
+    return false;
+  }
+
+  double step() {
+    const auto& out = sim_->step();
+    const auto& s = sim_->state();
+    const ros::Time stamp(s.t);
+    if (++truth_count_ % 5 == 0) truth_pub_.publish(sim_ros::toOdometry(s, "map", base_frame_));  // 20 Hz
+    if (out.gps) {
+      sensor_msgs::NavSatFix f;
+      f.header.stamp = stamp;
+      f.header.frame_id = "usv/gps";
+      f.status.status = sensor_msgs::NavSatStatus::STATUS_SBAS_FIX;
+      f.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
+      f.latitude = out.gps->fix.lat_deg;
+      f.longitude = out.gps->fix.lon_deg;
+      f.altitude = out.gps->fix.alt_m;
+      const double v = out.gps->position_sigma * out.gps->position_sigma;
+      f.position_covariance = {v, 0, 0, 0, v, 0, 0, 0, 4 * v};
+      f.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
+      gps_pub_.publish(f);
+      geometry_msgs::QuaternionStamped h;
+      h.header.stamp = stamp;
+      h.header.frame_id = "map";
+      h.quaternion = sim_ros::enuQuaternion(0.0, 0.0, out.gps->heading);
+      heading_pub_.publish(h);
+    }
+    if (out.gps) {  // the jets' state at the GPS rate (10 Hz), as the control units report it on the bus
+      const auto& p = sim_->model().params();
+      for (int i = 0; i < 2; ++i) {
+        const auto j = sim_->model().jet(i);
+        WaterjetStatus w;
+        w.header.stamp = stamp;
+        w.jet = static_cast<std::uint8_t>(i);
+        w.rpm = j.rpm;
+        w.nozzle_position = std::clamp(-j.nozzle / p.nozzle_max, -1.0, 1.0);  // P < 0 turns to starboard
+        w.bucket_position = j.bucket;
+        jet_pub_.publish(w);
+      }
+    }
+    if (out.lidar && lidar_pub_.getNumSubscribers() > 0) lidar_pub_.publish(cloudMessage(sim_->scan(), stamp));
+    return s.t;
+  }
+
+  // Organised cloud (height = layers, width = beams) in usv/lidar (FLU); NaN points for no return.
+  sensor_msgs::PointCloud2 cloudMessage(const sim::LidarScan& scan, const ros::Time& stamp) const {
+    sensor_msgs::PointCloud2 c;
+    c.header.stamp = stamp;
+    c.header.frame_id = "usv/lidar";
+    sensor_msgs::PointCloud2Modifier mod(c);
+    mod.setPointCloud2Fields(4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32,
+                             "z", 1, sensor_msgs::PointField::FLOAT32, "ring", 1, sensor_msgs::PointField::UINT16);
+    mod.resize(static_cast<std::size_t>(scan.layers) * scan.beams);
+    c.height = scan.layers;  // organised: one row per layer
+    c.width = scan.beams;
+    c.row_step = c.width * c.point_step;
+    c.is_dense = false;
+    sensor_msgs::PointCloud2Iterator<float> x(c, "x"), y(c, "y"), z(c, "z");
+    sensor_msgs::PointCloud2Iterator<std::uint16_t> ring(c, "ring");
+    for (int l = 0; l < scan.layers; ++l)
+      for (int b = 0; b < scan.beams; ++b, ++x, ++y, ++z, ++ring) {
+        const Eigen::Vector3d p = scan.pointFrd(l, b);  // NaN propagates for no return
+        *x = static_cast<float>(p.x());
+        *y = static_cast<float>(-p.y());
+        *z = static_cast<float>(-p.z());
+        *ring = static_cast<std::uint16_t>(l);
+      }
+    return c;
+  }
+
+  nav_msgs::OccupancyGrid gridMessage() const {
+    const auto& m = scenario_.map;
+    nav_msgs::OccupancyGrid g;
+    g.header.frame_id = "map";  // ENU: grid x = east, y = north, the layout of sim::MapGrid
+    g.info.resolution = static_cast<float>(m.resolution);
+    g.info.width = m.width;
+    g.info.height = m.height;
+    g.info.origin.position.x = m.east;
+    g.info.origin.position.y = m.north;
+    g.info.origin.orientation.w = 1.0;
+    g.data = m.data;
+    return g;
+  }
+
+  sim::Scenario scenario_;
+  std::unique_ptr<sim::UsvSimulation> sim_;
+  std::unique_ptr<sim_ros::SimRunner> runner_;
+  Counters counters_;
+  std::string base_frame_, command_topic_;
+  double manual_timeout_ = 1.0, last_manual_ = -1e9;
+  unsigned long truth_count_ = 0;
+  ros::Publisher jet_pub_, truth_pub_, gps_pub_, heading_pub_, lidar_pub_, map_pub_;
+  ros::Subscriber auto_sub_, manual_sub_;
+  tf2_ros::StaticTransformBroadcaster static_tf_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer diag_timer_;
+};
+
+}  // namespace offshore_gnc
+
+PLUGINLIB_EXPORT_CLASS(offshore_gnc::UsvSimNodelet, nodelet::Nodelet)

@@ -1,0 +1,318 @@
+// USBL node: pings the AUV's SeaTrac beacon over the serial line, decodes the replies and publishes each fix
+// with the AUV's position in map_ned and WGS84, geo-referenced with the USV's GPS position and heading at the
+// time of the fix (buffered /usv_gps, /usv_heading) and the transceiver's mounting; quality gates in the core.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <geometry_msgs/QuaternionStamped.h>
+#include <nodelet/nodelet.h>
+#include <offshore_gnc/UsblFix.h>
+#include <pluginlib/class_list_macros.hpp>
+#include <ros/ros.h>
+#include <sensor_msgs/FluidPressure.h>
+#include <sensor_msgs/NavSatFix.h>
+#include <std_msgs/UInt8MultiArray.h>
+
+#include <atomic>
+#include <deque>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/ros/diagnostics.h"
+#include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/usbl/positioning.h"
+#include "offshore_gnc/usbl/seatrac.h"
+#include "offshore_gnc/usbl/serial_port.h"
+#include "ros_usbl_common.h"
+
+namespace offshore_gnc {
+
+class UsblNodelet : public nodelet::Nodelet {
+ public:
+  ~UsblNodelet() override {
+    running_ = false;
+    if (io_.joinable()) io_.join();
+  }
+
+ private:
+  void onInit() override {
+    ros::NodeHandle& nh = getNodeHandle();
+    ros_util::ParamReader p(getPrivateNodeHandle());
+    usbl::QualityLimits lim;
+    geo::LatLonAlt o;
+    try {
+      const std::string port = p.text("port", "/dev/ttyUSB0");
+      const int baud = p.integer("baud", 115200, 9600, 230400);
+      retry_ = p.number("reconnect_period", 1.0, 0.05, 60);
+      local_id_ = static_cast<std::uint8_t>(p.integer("local_beacon_id", 1, 1, 15));
+      remote_id_ = static_cast<std::uint8_t>(p.integer("remote_beacon_id", 2, 1, 15));
+      ping_period_ = 1.0 / p.number("ping_rate", 0.5, 0.01, 5.0);
+      reply_timeout_ = p.number("reply_timeout", 3.0, 0.1, 30.0);
+      const std::string type = p.choice("ping_msg_type", "REQU", {"REQ", "REQU", "REQX"});
+      msg_type_ = type == "REQ" ? usbl::MSG_REQ : type == "REQX" ? usbl::MSG_REQX : usbl::MSG_REQU;
+      const std::string dtype = p.choice("data_msg_type", "REQ", {"OWAY", "REQ"});
+      data_msg_type_ = dtype == "OWAY" ? usbl::MSG_OWAY : usbl::MSG_REQ;
+      lim.max_fit_error = p.number("max_fit_error", 2.0, 0.01, 300);
+      lim.max_age_s = p.number("max_age", 2.0, 0.01, 60);
+      lim.max_pose_gap_s = p.number("max_pose_gap", 0.5, 0.01, 10);
+      lim.max_depth_error_m = p.number("max_depth_error", 3.0, 0.01, 1000);
+      lim.max_depth_gap_s = p.number("max_depth_gap", 1.0, 0.01, 10);
+      water_density_ = p.number("water_density", 1000.0, 990, 1050);
+      surface_pressure_ = p.number("surface_pressure", 101325.0, 80000, 120000);
+      frame_id_ = p.text("frame_id", "usv/usbl");
+      o.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
+      o.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
+      o.alt_m = p.number("origin/altitude", 0.0, -1000, 10000);
+      positioner_ = std::make_unique<usbl::Positioner>(usbl::readMounting(p), lim);
+      port_ = std::make_unique<usbl::SerialPort>(port, baud, retry_);
+    } catch (const ConfigError& e) {
+      NODELET_FATAL("%s", e.what());
+      throw;
+    }
+    local_ = std::make_unique<geo::LocalNed>(o);
+
+    fix_pub_ = nh.advertise<offshore_gnc::UsblFix>("/auv/usbl/fix", 10);
+    gps_sub_ = nh.subscribe("/usv_gps", 20, &UsblNodelet::onGps, this);
+    heading_sub_ = nh.subscribe("/usv_heading", 20, &UsblNodelet::onHeading, this);
+    pressure_sub_ = nh.subscribe("/auv/pressure", 20, &UsblNodelet::onPressure, this);
+    // Acoustic data channel: packets out with DAT_SEND (REQ: the remote answers with its queued packet),
+    // DAT_RECEIVE payloads in.
+    data_in_pub_ = nh.advertise<std_msgs::UInt8MultiArray>("/auv/usbl/data_in", 10);
+    data_out_sub_ = nh.subscribe("/auv/usbl/data_out", 10, &UsblNodelet::onDataOut, this);
+    ping_timer_ = nh.createTimer(ros::Duration(ping_period_), [this](const ros::TimerEvent&) { ping_due_ = true; });
+
+    updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
+    updater_->setHardwareID("seatrac:" + port_->path());
+    updater_->add("usbl", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+      if (port_open_)
+        s.summary(diagnostic_msgs::DiagnosticStatus::OK, "serial open");
+      else
+        s.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "serial closed: " + last_port_error());
+      ros_util::addCounters(s, counters_, {"ping_errors", "no_reply", "bad_gps", "data_too_long", "data_dropped"});
+      ros_util::addCounters(s, port_->counters(), {"hangups", "io_errors"});
+      ros_util::addCounters(s, decoder_.counters(),
+                            {"bad_crc", "odd_hex_length", "non_hex", "unknown_cid", "truncated", "trailing_bytes",
+                             "too_many_channels", "line_too_long", "bad_value"});
+      std::lock_guard<std::mutex> lock(mutex_);
+      ros_util::addCounters(s, positioner_->counters());
+    });
+    diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->update(); });
+    running_ = true;
+    io_ = std::thread([this] { ioLoop(); });
+    NODELET_INFO("USBL on %s: pinging beacon %d every %.2f s", port_->path().c_str(), remote_id_, ping_period_);
+  }
+
+  std::string last_port_error() {
+    std::lock_guard<std::mutex> lock(err_mutex_);
+    return last_error_;
+  }
+
+  // The only thread touching the serial port: reads replies, and sends a ping when one is due and no
+  // transaction is open (the transceiver handles one at a time).
+  void ioLoop() {
+    std::uint8_t buf[512];
+    std::vector<usbl::StreamDecoder::Event> events;
+    while (running_ && ros::ok()) {
+      const std::size_t n = port_->read(buf, sizeof buf, 20);
+      const bool open = port_->isOpen();
+      if (open != port_open_) {
+        port_open_ = open;
+        if (!open) NODELET_WARN("serial %s lost (%s); reopening", port_->path().c_str(), port_->lastError().c_str());
+        else NODELET_INFO("serial %s open", port_->path().c_str());
+      }
+      if (!open) {
+        std::lock_guard<std::mutex> lock(err_mutex_);
+        last_error_ = port_->lastError();
+        NODELET_WARN_THROTTLE(10.0, "serial %s not available (%s); retrying every %.1f s", port_->path().c_str(),
+                              last_error_.c_str(), retry_);
+      }
+      const ros::Time now = ros::Time::now();
+      if (n > 0) {
+        events.clear();
+        decoder_.feed(buf, n, events);
+        for (const auto& e : events) handle(e, now);
+      }
+      if (awaiting_ && (now - ping_sent_).toSec() > reply_timeout_) {
+        awaiting_ = false;
+        counters_.increment("no_reply");
+      }
+      std::vector<std::uint8_t> data;
+      if (!awaiting_ && port_->isOpen() && popData(data)) {
+        const usbl::Message dat{true, usbl::DatSend{remote_id_, data_msg_type_, data}};
+        if (port_->write(usbl::encodeFrame(dat))) {
+          awaiting_ = data_msg_type_ != usbl::MSG_OWAY;
+          ping_sent_ = now;
+          counters_.increment("data_sent");
+        }
+      } else if (ping_due_ && !awaiting_ && port_->isOpen()) {
+        ping_due_ = false;
+        const usbl::Message ping{true, usbl::PingSend{remote_id_, msg_type_}};
+        if (port_->write(usbl::encodeFrame(ping))) {
+          awaiting_ = true;
+          ping_sent_ = now;
+          counters_.increment("pings_sent");
+        }
+      }
+    }
+  }
+
+  void handle(const usbl::StreamDecoder::Event& e, const ros::Time& now) {
+    if (!e.message) {
+      NODELET_WARN_THROTTLE(5.0, "USBL frame rejected (%s): %.60s", e.reason.c_str(), e.line.c_str());
+      return;
+    }
+    const auto& body = e.message->body;
+    if (auto s = std::get_if<usbl::StatusReply>(&body)) {
+      const bool data = s->cid == usbl::CID_DAT_ERROR || s->cid == usbl::CID_DAT_SEND;
+      if (s->cid == usbl::CID_PING_ERROR || s->cid == usbl::CID_DAT_ERROR) {
+        awaiting_ = false;
+        counters_.increment(std::string(data ? "data" : "ping") +
+                            (s->status == usbl::kStatusXcvrRespTimeout ? "_timeouts" : "_errors"));
+      } else if ((s->cid == usbl::CID_PING_SEND || data) && s->status != usbl::kStatusOk) {
+        awaiting_ = false;
+        counters_.increment(data ? "data_errors" : "ping_errors");
+        NODELET_WARN_THROTTLE(5.0, "%s refused with status 0x%02X", usbl::cidName(s->cid), s->status);
+      }
+    } else if (auto f = std::get_if<usbl::FixMessage>(&body)) {
+      if (f->fix.src_id == remote_id_) awaiting_ = false;
+      publishFix(f->fix, now);
+    } else if (auto d = std::get_if<usbl::DatReceive>(&body)) {
+      if (d->fix.src_id == remote_id_) awaiting_ = false;
+      std_msgs::UInt8MultiArray m;
+      m.data = d->data;
+      data_in_pub_.publish(m);
+      counters_.increment("data_received");
+      publishFix(d->fix, now);  // a data message is also an acoustic fix of its sender
+    }
+  }
+
+  void publishFix(const usbl::AcoFix& f, const ros::Time& now) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    usbl::FixResult r;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      r = positioner_->process(f, now.toSec(), ros::Time::now().toSec());
+    }
+    offshore_gnc::UsblFix m;
+    m.header.stamp = ros::Time(std::max(0.0, r.stamp));
+    m.header.frame_id = frame_id_;
+    m.local_beacon_id = f.dest_id;
+    m.remote_beacon_id = f.src_id;
+    m.flags = f.flags;
+    m.quality = r.quality;
+    const bool ranged = f.has(usbl::AcoFix::RANGE), angled = f.has(usbl::AcoFix::USBL);
+    m.range = ranged ? f.rangeM() : nan;
+    m.range_time = ranged ? f.rangeTimeS() : nan;
+    m.azimuth = angled ? f.azimuthRad() : nan;
+    m.elevation = angled ? f.elevationRad() : nan;
+    m.fit_error = angled ? f.fitError() : nan;
+    m.rssi = f.rssi * 0.1;
+    m.sound_speed = f.vos * 0.1;
+    m.local_depth = f.depth_local * 0.1;
+    m.local_yaw = deg2rad(f.yaw * 0.1);
+    m.local_pitch = deg2rad(f.pitch * 0.1);
+    m.local_roll = deg2rad(f.roll * 0.1);
+    auto set = [](geometry_msgs::Point& pt, const std::optional<Eigen::Vector3d>& v) {
+      pt.x = v ? v->x() : nan;
+      pt.y = v ? v->y() : nan;
+      pt.z = v ? v->z() : nan;
+    };
+    set(m.position_local, r.local);
+    set(m.position_ned, r.ned);
+    m.latitude = m.longitude = nan;
+    if (r.ned) {
+      const geo::LatLonAlt g = local_->toGeodetic(*r.ned);
+      m.latitude = g.lat_deg;
+      m.longitude = g.lon_deg;
+    }
+    if (r.quality != usbl::Q_OK)
+      NODELET_WARN_THROTTLE(5.0, "USBL fix rejected: %s", usbl::qualityName(r.quality));
+    fix_pub_.publish(m);
+  }
+
+  void onDataOut(const std_msgs::UInt8MultiArray& m) {
+    if (m.data.empty() || m.data.size() > usbl::kMaxDataPacket) {
+      counters_.increment("data_too_long");
+      NODELET_WARN_THROTTLE(5.0, "acoustic packet of %zu bytes dropped (1..%zu)", m.data.size(), usbl::kMaxDataPacket);
+      return;
+    }
+    std::lock_guard<std::mutex> lock(data_mutex_);
+    if (data_out_.size() >= 16) {  // the channel carries about one packet per ping cycle: keep the newest
+      data_out_.pop_front();
+      counters_.increment("data_dropped");
+    }
+    data_out_.push_back(m.data);
+  }
+
+  bool popData(std::vector<std::uint8_t>& out) {
+    std::lock_guard<std::mutex> lock(data_mutex_);
+    if (data_out_.empty()) return false;
+    out = std::move(data_out_.front());
+    data_out_.pop_front();
+    return true;
+  }
+
+  void onGps(const sensor_msgs::NavSatFix& g) {
+    if (g.status.status < sensor_msgs::NavSatStatus::STATUS_FIX || !std::isfinite(g.latitude) ||
+        !std::isfinite(g.longitude) || !std::isfinite(g.altitude)) {
+      counters_.increment("bad_gps");
+      NODELET_WARN_THROTTLE(5.0, "ignoring /usv_gps without a valid fix");
+      return;
+    }
+    const Eigen::Vector3d ned = local_->toNed({g.latitude, g.longitude, g.altitude});
+    std::lock_guard<std::mutex> lock(mutex_);
+    positioner_->addUsvPosition(g.header.stamp.toSec(), ned);
+  }
+
+  void onHeading(const geometry_msgs::QuaternionStamped& q) {
+    const Eigen::Quaterniond e(q.quaternion.w, q.quaternion.x, q.quaternion.y, q.quaternion.z);
+    if (!std::isfinite(e.norm()) || std::abs(e.norm() - 1.0) > 0.01) {
+      counters_.increment("bad_heading");
+      NODELET_WARN_THROTTLE(5.0, "ignoring /usv_heading with a non-unit quaternion");
+      return;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    positioner_->addUsvAttitude(q.header.stamp.toSec(), usbl::enuFluToNedFrd(e));
+  }
+
+  void onPressure(const sensor_msgs::FluidPressure& p) {
+    if (!std::isfinite(p.fluid_pressure)) {
+      counters_.increment("bad_pressure");
+      return;
+    }
+    const double depth = (p.fluid_pressure - surface_pressure_) / (water_density_ * 9.80665);
+    std::lock_guard<std::mutex> lock(mutex_);
+    positioner_->addRemoteDepth(p.header.stamp.toSec(), depth);
+  }
+
+  std::uint8_t local_id_ = 1, remote_id_ = 2, msg_type_ = usbl::MSG_REQU, data_msg_type_ = usbl::MSG_REQ;
+  std::mutex data_mutex_;
+  std::deque<std::vector<std::uint8_t>> data_out_;
+  ros::Publisher data_in_pub_;
+  ros::Subscriber data_out_sub_;
+  double retry_ = 1.0, ping_period_ = 2.0, reply_timeout_ = 3.0, water_density_ = 1000.0, surface_pressure_ = 101325.0;
+  std::string frame_id_;
+  std::unique_ptr<geo::LocalNed> local_;
+  std::unique_ptr<usbl::SerialPort> port_;
+  usbl::StreamDecoder decoder_;
+  std::mutex mutex_;  // positioner (ROS callbacks vs the I/O thread)
+  std::unique_ptr<usbl::Positioner> positioner_;
+  Counters counters_;
+  std::atomic<bool> running_{false}, ping_due_{false}, port_open_{false};
+  bool awaiting_ = false;  // I/O thread only
+  ros::Time ping_sent_;
+  std::mutex err_mutex_;
+  std::string last_error_;
+  std::thread io_;
+  ros::Publisher fix_pub_;
+  ros::Subscriber gps_sub_, heading_sub_, pressure_sub_;
+  ros::Timer ping_timer_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer diag_timer_;
+};
+
+}  // namespace offshore_gnc
+
+PLUGINLIB_EXPORT_CLASS(offshore_gnc::UsblNodelet, nodelet::Nodelet)

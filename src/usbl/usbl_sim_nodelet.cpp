@@ -1,0 +1,177 @@
+// SeaTrac beacon-pair simulator on a pseudo-terminal: the USBL node opens `port` (a symlink to the pty's slave)
+// as if it were the X150's serial line; commands are decoded with the real codec and answered by the core
+// BeaconSimulator from both vehicles' ground truth (map ENU odometry), with the two-way acoustic delay.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <nav_msgs/Odometry.h>
+#include <nodelet/nodelet.h>
+#include <pluginlib/class_list_macros.hpp>
+#include <pty.h>
+#include <poll.h>
+#include <ros/ros.h>
+#include <std_msgs/UInt8MultiArray.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/ros/diagnostics.h"
+#include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/usbl/beacon_sim.h"
+#include "ros_usbl_common.h"
+
+namespace offshore_gnc {
+
+class UsblSimNodelet : public nodelet::Nodelet {
+ public:
+  ~UsblSimNodelet() override {
+    running_ = false;
+    if (io_.joinable()) io_.join();
+    if (master_ >= 0) ::close(master_);
+    if (slave_ >= 0) ::close(slave_);
+    if (!link_.empty()) ::unlink(link_.c_str());
+  }
+
+ private:
+  void onInit() override {
+    ros::NodeHandle& nh = getNodeHandle();
+    ros_util::ParamReader p(getPrivateNodeHandle());
+    usbl::BeaconSimConfig cfg;
+    try {
+      link_ = p.text("port", "/tmp/seatrac_sim");
+      cfg.local_id = static_cast<std::uint8_t>(p.integer("local_beacon_id", 1, 1, 15));
+      cfg.remote_id = static_cast<std::uint8_t>(p.integer("remote_beacon_id", 2, 1, 15));
+      cfg.mount = usbl::readMounting(p);
+      cfg.sound_speed = p.number("sound_speed", 1500.0, 1300, 1700);
+      cfg.range_sigma = p.number("range_sigma", 0.05, 0, 100);
+      cfg.angle_sigma = deg2rad(p.number("angle_sigma_deg", 0.5, 0, 45));
+      cfg.dropout_probability = p.number("dropout_probability", 0.05, 0, 1);
+      cfg.max_range = p.number("max_range", 1000.0, 1, 20000);
+      cfg.timeout = p.number("timeout", 1.0, 0.05, 30);
+      cfg.fit_error = p.number("fit_error", 0.3, 0, 300);
+      cfg.seed = static_cast<unsigned>(p.integer("seed", 1, 0, 1 << 30));
+      sim_ = std::make_unique<usbl::BeaconSimulator>(cfg);
+    } catch (const ConfigError& e) {
+      NODELET_FATAL("%s", e.what());
+      throw;
+    }
+    mount_ = cfg.mount;
+    if (::openpty(&master_, &slave_, nullptr, nullptr, nullptr) != 0) {
+      NODELET_FATAL("openpty failed: %s", std::strerror(errno));
+      throw std::runtime_error("openpty failed");
+    }
+    termios t{};
+    tcgetattr(slave_, &t);
+    cfmakeraw(&t);  // the protocol's CR LF must pass untranslated, and nothing may echo back
+    tcsetattr(slave_, TCSANOW, &t);
+    char name[256] = {};
+    ttyname_r(slave_, name, sizeof name);
+    ::unlink(link_.c_str());
+    if (::symlink(name, link_.c_str()) != 0) {
+      NODELET_FATAL("cannot create %s -> %s: %s", link_.c_str(), name, std::strerror(errno));
+      throw std::runtime_error("symlink failed");
+    }
+    usv_sub_ = nh.subscribe("/usv/ground_truth/odom", 20, &UsblSimNodelet::onUsv, this);
+    auv_sub_ = nh.subscribe("/auv/ground_truth/odom", 20, &UsblSimNodelet::onAuv, this);
+    // What the AUV's beacon has queued for the next data request (the AUV side's DAT_QUEUE_SET).
+    queue_sub_ = nh.subscribe("/auv/usbl/sim_remote_queue", 5, &UsblSimNodelet::onQueue, this);
+    updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
+    updater_->setHardwareID("seatrac_sim:" + link_);
+    updater_->add("usbl_sim", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+      s.summary(diagnostic_msgs::DiagnosticStatus::OK, "simulating on " + link_);
+      ros_util::addCounters(s, sim_->counters());
+      ros_util::addCounters(s, decoder_.counters(), {"bad_crc", "non_hex", "unknown_cid"});
+      ros_util::addCounters(s, counters_, {"write_errors"});
+    });
+    diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->update(); });
+    running_ = true;
+    io_ = std::thread([this] { ioLoop(); });
+    NODELET_INFO("SeaTrac simulator on %s (%s)", link_.c_str(), name);
+  }
+
+  static bool poseOf(const nav_msgs::Odometry& o, usbl::Pose& p) {
+    const auto& q = o.pose.pose.orientation;
+    const Eigen::Quaterniond e(q.w, q.x, q.y, q.z);
+    const Eigen::Vector3d enu(o.pose.pose.position.x, o.pose.pose.position.y, o.pose.pose.position.z);
+    if (!enu.allFinite() || !std::isfinite(e.norm()) || e.norm() < 0.5) return false;
+    p.ned = geo::enuToNed(enu);
+    p.q = usbl::enuFluToNedFrd(e);
+    return true;
+  }
+  void onUsv(const nav_msgs::Odometry& o) {
+    usbl::Pose p;
+    if (!poseOf(o, p)) return counters_.increment("bad_ground_truth");
+    std::lock_guard<std::mutex> lock(mutex_);
+    usv_ = p;
+    have_usv_ = true;
+  }
+  void onAuv(const nav_msgs::Odometry& o) {
+    usbl::Pose p;
+    if (!poseOf(o, p)) return counters_.increment("bad_ground_truth");
+    std::lock_guard<std::mutex> lock(mutex_);
+    auv_ = p.ned;
+    have_auv_ = true;
+  }
+
+  void onQueue(const std_msgs::UInt8MultiArray& m) {
+    if (m.data.size() > usbl::kMaxDataPacket) return counters_.increment("bad_remote_queue");
+    std::lock_guard<std::mutex> lock(mutex_);
+    sim_->setRemoteQueue(m.data);
+  }
+
+  void write(const std::string& s) {
+    if (s.empty()) return;
+    if (::write(master_, s.data(), s.size()) != static_cast<ssize_t>(s.size())) counters_.increment("write_errors");
+  }
+
+  void ioLoop() {
+    std::uint8_t buf[256];
+    std::vector<usbl::StreamDecoder::Event> events;
+    while (running_ && ros::ok()) {
+      pollfd pfd{master_, POLLIN, 0};
+      if (::poll(&pfd, 1, 5) > 0 && (pfd.revents & POLLIN)) {
+        const ssize_t n = ::read(master_, buf, sizeof buf);
+        if (n > 0) {
+          events.clear();
+          decoder_.feed(buf, static_cast<std::size_t>(n), events);
+          for (const auto& e : events) {
+            if (!e.message) continue;
+            std::lock_guard<std::mutex> lock(mutex_);
+            // Without both poses the beacon is out of reach: the ping times out.
+            sim_->setCurrentRange(have_usv_ && have_auv_ ? usbl::transceiverRange(mount_, usv_, auv_)
+                                                         : std::numeric_limits<double>::infinity());
+            write(sim_->handle(*e.message, ros::Time::now().toSec()));
+          }
+        }
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      write(sim_->poll(ros::Time::now().toSec(), usv_, auv_));
+    }
+  }
+
+  std::string link_;
+  int master_ = -1, slave_ = -1;
+  usbl::Mounting mount_;
+  std::mutex mutex_;
+  std::unique_ptr<usbl::BeaconSimulator> sim_;
+  usbl::Pose usv_;
+  Eigen::Vector3d auv_ = Eigen::Vector3d::Zero();
+  bool have_usv_ = false, have_auv_ = false;
+  usbl::StreamDecoder decoder_;
+  Counters counters_;
+  std::atomic<bool> running_{false};
+  std::thread io_;
+  ros::Subscriber usv_sub_, auv_sub_, queue_sub_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer diag_timer_;
+};
+
+}  // namespace offshore_gnc
+
+PLUGINLIB_EXPORT_CLASS(offshore_gnc::UsblSimNodelet, nodelet::Nodelet)

@@ -1,0 +1,294 @@
+"""Multi-master relay tests: real rosmasters on free ports (MasterSet), real relay nodelets, real sockets.
+
+Run as a script (`python3 test_relay_multimaster.py probe ...`) the file is also the probe node the tests start
+against one master: a counting publisher or a recording subscriber.
+"""
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+import pytest
+import yaml
+
+from offshore_gnc.testing.masters import MasterSet, free_port
+
+HERE = os.path.abspath(__file__)
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
+KEY = "relay-test-key-0123456789"
+
+
+# ------------------------------------------------------------------------------------------- probe node
+def _probe(argv):
+    import rospy
+    from std_msgs.msg import String
+    mode, topic = argv[0], argv[1]
+    rospy.init_node("probe", anonymous=True, disable_signals=False)
+    if mode == "pub":  # pub TOPIC N RATE
+        n, rate = int(argv[2]), float(argv[3])
+        pub = rospy.Publisher(topic, String, queue_size=1000)
+        deadline = time.time() + 20
+        while pub.get_num_connections() < 1 and time.time() < deadline:  # the relay's subscriber
+            time.sleep(0.02)
+        r = rospy.Rate(rate)
+        for i in range(n):
+            pub.publish(String(data=str(i)))
+            r.sleep()
+        rospy.sleep(1.0)
+    elif mode == "sub":  # sub TOPIC OUTFILE
+        out = open(argv[2], "a", buffering=1)
+        rospy.Subscriber(topic, String, lambda m: out.write(m.data + "\n"), queue_size=1000)
+        rospy.spin()
+
+
+# ------------------------------------------------------------------------------------------- helpers
+def start_relay(master, cfg, name="relay"):
+    path = os.path.join(master.log_dir, "%s-%s.yaml" % (master.name, name))
+    with open(path, "w") as f:
+        yaml.safe_dump(cfg, f)
+    rc, out = master.call(["rosparam", "load", path, "/" + name])
+    assert rc == 0, out
+    return master.run(["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/Relay", "__name:=" + name],
+                      name=name)
+
+
+def cfg(name, peers, topics, listen_port=0, key=KEY, **extra):
+    c = {"name": name, "listen_port": listen_port, "peers": peers, "topics": topics,
+         "heartbeat_period": 0.1, "link_timeout": 0.6, "backoff_max": 0.5}
+    if key:
+        c["key"] = key
+    else:
+        c["auth"] = "none"
+    c.update(extra)
+    return c
+
+
+def probe(master, *args, name):
+    return master.run(["/usr/bin/python3", HERE, "probe"] + [str(a) for a in args], name=name)
+
+
+def read_lines(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return [l.strip() for l in f if l.strip()]
+
+
+def wait_until(pred, timeout, step=0.1):
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        if pred():
+            return True
+        time.sleep(step)
+    return pred()
+
+
+def log_text(master, name):
+    try:
+        with open(master.log_path(name), errors="replace") as f:
+            return f.read()
+    except FileNotFoundError:
+        return ""
+
+
+def link_status(master, timeout=10):
+    return master.wait_for_message("/relay/link_status", timeout=timeout)
+
+
+# ------------------------------------------------------------------------------------------- tests
+def test_shipped_configs_carry_the_thesis_topics_latched_target():
+    """config/relay/{usv,auv}.yaml: /usv_gps + /usv_heading USV -> AUV, /target AUV -> USV (latched)."""
+    port = free_port()
+    with MasterSet(["usv", "auv"]) as ms:
+        usv, auv = ms["usv"], ms["auv"]
+        key_file = os.path.join(usv.log_dir, "key")
+        with open(key_file, "w") as f:
+            f.write(KEY + "\n")
+        for m, vehicle in ((usv, "usv"), (auv, "auv")):
+            with open(os.path.join(REPO, "config", "relay", vehicle + ".yaml")) as f:
+                c = yaml.safe_load(f)
+            c["key_file"] = key_file
+            if vehicle == "usv":
+                c["listen_port"] = port
+            else:
+                c["peers"][0]["address"] = "127.0.0.1:%d" % port
+            start_relay(m, c)
+        # latched /target published on the AUV before anyone on the USV listens
+        auv.publish("/target", "offshore_gnc/Target", {"id": 7, "range": 12.5, "latitude": 61.45})
+        usv.publish("/usv_gps", "sensor_msgs/NavSatFix", {"latitude": 61.45, "longitude": 23.85}, latch=False)
+        usv.run(["rostopic", "pub", "-r", "5", "/usv_heading", "geometry_msgs/QuaternionStamped",
+                 "{quaternion: {w: 1.0}}"], name="heading")
+        assert usv.wait_for_topic("/target", timeout=15), usv.topics()
+        time.sleep(1.0)  # a late subscriber, long after the message was sent
+        t = usv.wait_for_message("/target", timeout=10)
+        assert t["id"] == 7 and abs(t["range"] - 12.5) < 1e-9
+        h = auv.wait_for_message("/usv_heading", timeout=10)
+        assert abs(h["quaternion"]["w"] - 1.0) < 1e-9
+        # direction: /usv_gps only goes USV -> AUV, /target never goes back to the AUV's master from the USV
+        assert "/usv_heading" in auv.topics()
+        st = link_status(usv)
+        assert st["up"] and st["local_name"] == "usv" and st["peer_name"] == "auv"
+
+
+def test_renaming_direction_and_first_message():
+    port = free_port()
+    with MasterSet(["usv", "auv"]) as ms:
+        usv, auv = ms["usv"], ms["auv"]
+        out = os.path.join(usv.log_dir, "renamed.txt")
+        probe(usv, "sub", "/usv/from_auv", out, name="sub")
+        start_relay(usv, cfg("usv", [{"name": "auv"}],
+                             [{"topic": "/usv/from_auv", "type": "std_msgs/String", "direction": "in"}],
+                             listen_port=port))
+        start_relay(auv, cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
+                             [{"topic": "/chat", "type": "std_msgs/String", "direction": "out",
+                               "remote": "/usv/from_auv"}]))
+        probe(auv, "pub", "/chat", 20, 50, name="pub")
+        assert wait_until(lambda: len(read_lines(out)) >= 20, 20), read_lines(out)
+        assert read_lines(out) == [str(i) for i in range(20)]  # the first message too, in order
+        # only the configured name crosses, and nothing goes the other way
+        assert "/chat" not in usv.topics()
+        assert "/usv/from_auv" not in auv.topics()
+
+
+def test_type_mismatch_is_refused_naming_the_topic():
+    port = free_port()
+    with MasterSet(["usv", "auv"]) as ms:
+        usv, auv = ms["usv"], ms["auv"]
+        start_relay(usv, cfg("usv", [{"name": "auv"}],
+                             [{"topic": "/target", "type": "std_msgs/String", "direction": "in"}], listen_port=port))
+        start_relay(auv, cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
+                             [{"topic": "/target", "type": "offshore_gnc/Target", "direction": "out"},
+                              {"topic": "/other", "type": "offshore_gnc/Target", "direction": "out"}]))
+        auv.publish("/target", "offshore_gnc/Target", {"id": 1})
+        auv.publish("/other", "std_msgs/String", {"data": "x"})  # sender side: wrong local type
+        assert wait_until(lambda: "refused" in log_text(usv, "relay"), 15), log_text(usv, "relay")
+        usv_log, auv_log = log_text(usv, "relay"), log_text(auv, "relay")
+        assert "/target" in usv_log and "offshore_gnc/Target" in usv_log
+        assert wait_until(lambda: "/other" in log_text(auv, "relay") and "std_msgs/String" in log_text(auv, "relay"),
+                          10), auv_log
+        assert "/target" not in usv.topics()
+
+
+def test_wrong_key_delivers_nothing_and_counts():
+    port = free_port()
+    with MasterSet(["usv", "auv"]) as ms:
+        usv, auv = ms["usv"], ms["auv"]
+        start_relay(usv, cfg("usv", [{"name": "auv"}],
+                             [{"topic": "/target", "type": "std_msgs/String", "direction": "in"}], listen_port=port))
+        start_relay(auv, cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
+                             [{"topic": "/target", "type": "std_msgs/String", "direction": "out"}],
+                             key="not-the-same-key-at-all"))
+        auv.publish("/target", "std_msgs/String", {"data": "secret"})
+        time.sleep(3.0)
+        assert "/target" not in usv.topics()
+        st = link_status(usv)
+        assert not st["up"]
+        assert "failed authentication" in log_text(usv, "relay")
+
+
+def test_receiver_restart_mid_stream_loses_nothing():
+    port = free_port()
+    n = 300
+    with MasterSet(["usv", "auv"]) as ms:
+        usv, auv = ms["usv"], ms["auv"]
+        out = os.path.join(usv.log_dir, "count.txt")
+        probe(usv, "sub", "/count", out, name="sub")
+        usv_cfg = cfg("usv", [{"name": "auv"}], [{"topic": "/count", "type": "std_msgs/String", "direction": "in"}],
+                      listen_port=port)
+        relay = start_relay(usv, usv_cfg)
+        start_relay(auv, cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
+                             [{"topic": "/count", "type": "std_msgs/String", "direction": "out", "reliable": True}]))
+        probe(auv, "pub", "/count", n, 100, name="pub")
+        assert wait_until(lambda: len(read_lines(out)) >= 60, 20)
+        os.killpg(relay.pid, signal.SIGKILL)  # the harshest restart: nothing flushed
+        relay.wait(5)
+        time.sleep(0.5)
+        start_relay(usv, usv_cfg, name="relay")
+        assert wait_until(lambda: set(read_lines(out)) >= {str(i) for i in range(n)}, 30), \
+            sorted(set(str(i) for i in range(n)) - set(read_lines(out)), key=int)[:20]
+        st = link_status(auv)
+        assert st["up"]
+
+
+def test_four_masters_several_peers():
+    port = free_port()
+    with MasterSet(["usv", "auv1", "auv2", "ground"]) as ms:
+        usv = ms["usv"]
+        gps_topic = {"topic": "/usv_gps", "type": "std_msgs/String", "direction": "out"}
+        start_relay(usv, cfg("usv", [{"name": "auv1"}, {"name": "auv2"}, {"name": "ground"}],
+                             [gps_topic,
+                              {"topic": "/auv1/target", "type": "std_msgs/String", "direction": "in", "peers": ["auv1"]},
+                              {"topic": "/auv2/target", "type": "std_msgs/String", "direction": "in", "peers": ["auv2"]}],
+                             listen_port=port))
+        dial = [{"name": "usv", "address": "127.0.0.1:%d" % port}]
+        for n in ("auv1", "auv2"):
+            start_relay(ms[n], cfg(n, dial, [
+                {"topic": "/usv_gps", "type": "std_msgs/String", "direction": "in"},
+                {"topic": "/target", "type": "std_msgs/String", "direction": "out", "remote": "/%s/target" % n,
+                 "latched": True},
+                # auv2 also tries to speak for auv1: refused by the USV (peers: [auv1])
+                {"topic": "/fake", "type": "std_msgs/String", "direction": "out", "remote": "/auv1/target"}]))
+        start_relay(ms["ground"], cfg("ground", dial, [{"topic": "/usv_gps", "type": "std_msgs/String",
+                                                        "direction": "in"}]))
+        usv.run(["rostopic", "pub", "-r", "5", "/usv_gps", "std_msgs/String", "data: fix"], name="gps")
+        for n in ("auv1", "auv2"):
+            ms[n].publish("/target", "std_msgs/String", {"data": "target of " + n})
+        ms["auv2"].publish("/fake", "std_msgs/String", {"data": "forged"}, name="fake")
+        for n in ("auv1", "auv2", "ground"):
+            assert ms[n].wait_for_message("/usv_gps", timeout=15)["data"] == "fix"
+        assert usv.wait_for_message("/auv1/target", timeout=15)["data"] == "target of auv1"
+        assert usv.wait_for_message("/auv2/target", timeout=15)["data"] == "target of auv2"
+        assert wait_until(lambda: "not configured" in log_text(usv, "relay"), 10)
+        time.sleep(0.5)
+        assert usv.wait_for_message("/auv1/target", timeout=5)["data"] == "target of auv1"
+
+
+def _rss_kb(pid):
+    for pid_ in [pid] + [int(p) for p in os.popen("pgrep -P %d" % pid).read().split()]:
+        try:
+            with open("/proc/%d/status" % pid_) as f:
+                for line in f:
+                    if line.startswith("VmRSS") and "nodelet" in open("/proc/%d/cmdline" % pid_).read():
+                        return int(line.split()[1])
+        except FileNotFoundError:
+            pass
+    return 0
+
+
+def test_bad_frames_and_floods_are_dropped_counted_bounded():
+    port = free_port()
+    with MasterSet(["usv", "auv"]) as ms:
+        usv, auv = ms["usv"], ms["auv"]
+        out = os.path.join(usv.log_dir, "count.txt")
+        probe(usv, "sub", "/count", out, name="sub")
+        relay = start_relay(usv, cfg("usv", [{"name": "auv"}],
+                                     [{"topic": "/count", "type": "std_msgs/String", "direction": "in"}],
+                                     listen_port=port))
+        start_relay(auv, cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
+                             [{"topic": "/count", "type": "std_msgs/String", "direction": "out"}]))
+        assert wait_until(lambda: link_status(usv)["up"], 15)
+        rss0 = _rss_kb(relay.pid)
+        # garbage, an oversized length field, and a 64 MB flood of random bytes over many connections
+        blob = os.urandom(1 << 20)
+        for i in range(64):
+            with socket.create_connection(("127.0.0.1", port)) as s:
+                try:
+                    if i == 0:
+                        s.sendall(b"OGR1" + b"\x03\x00\x00\x00" + b"\x00" * 16 + b"\xff\xff\xff\x7f" + b"\x00" * 4)
+                    else:
+                        s.sendall(blob)
+                except (BrokenPipeError, ConnectionResetError):
+                    pass
+        probe(auv, "pub", "/count", 50, 50, name="pub")
+        assert wait_until(lambda: len(read_lines(out)) >= 50, 20), len(read_lines(out))
+        assert relay.poll() is None  # still running
+        rss1 = _rss_kb(relay.pid)
+        assert rss1 - rss0 < 80 * 1024, (rss0, rss1)
+        log = log_text(usv, "relay")
+        assert "oversized" in log or "bad magic" in log
+
+
+if __name__ == "__main__" and len(sys.argv) > 2 and sys.argv[1] == "probe":
+    _probe(sys.argv[2:])

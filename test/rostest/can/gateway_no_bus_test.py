@@ -1,0 +1,53 @@
+#!/usr/bin/python3
+"""CanGateway without its interface: diagnostics say the bus is down, bad commands are counted, no crash."""
+import math
+import time
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from offshore_gnc.msg import JoystickCommand
+
+
+class GatewayNoBus(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("gateway_no_bus_test")
+        cls.statuses = []
+        cls.sub = rospy.Subscriber("/diagnostics", DiagnosticArray, cls.on_diag)
+        cls.pub = rospy.Publisher("/usv/joystick_cmd", JoystickCommand, queue_size=10)
+
+    @classmethod
+    def on_diag(cls, msg):
+        cls.statuses.extend(s for s in msg.status if "can gateway" in s.name)
+
+    def wait_for(self, pred, timeout=20.0):
+        end = time.time() + timeout
+        while time.time() < end and not rospy.is_shutdown():
+            for s in list(self.statuses):
+                if pred(s):
+                    return s
+            time.sleep(0.1)
+        return None
+
+    def test_down_bus_reported_and_bad_commands_counted(self):
+        s = self.wait_for(lambda s: True)
+        self.assertIsNotNone(s, "no diagnostics from the gateway")
+        self.assertEqual(s.level, DiagnosticStatus.ERROR)
+        self.assertIn("down", s.message)
+        deadline = time.time() + 5.0
+        while self.pub.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
+        for v in (math.nan, 2.0, -math.inf):
+            self.pub.publish(JoystickCommand(surge=v))
+        self.pub.publish(JoystickCommand(surge=0.3))
+        s = self.wait_for(lambda s: any(kv.key == "autonomy_out_of_range" and int(kv.value) == 3 for kv in s.values))
+        self.assertIsNotNone(s, "bad commands not counted: %s" % (self.statuses[-1].values if self.statuses else None))
+        values = {kv.key: kv.value for kv in s.values}
+        self.assertEqual(values["bus_state"], "down")
+        self.assertIn(values["mode"], ("autonomy", "watchdog"))
+
+
+if __name__ == "__main__":
+    rostest.rosrun("offshore_gnc", "gateway_no_bus", GatewayNoBus)

@@ -1,0 +1,124 @@
+#!/usr/bin/python3
+"""rostest: the USV Guidance and Control nodelets on synthetic input (odometry in map/ENU, path in map_ned)."""
+import math
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Odometry, Path
+from offshore_gnc.msg import GuidanceStatus, JoystickCommand, SafetyBox, SafetyBoxArray, Target, TargetArray
+
+
+def odom(north, east, yaw_ned=0.0):
+    o = Odometry()
+    o.header.stamp = rospy.Time.now()
+    o.header.frame_id = "map"
+    o.child_frame_id = "usv/base_link"
+    o.pose.pose.position.x, o.pose.pose.position.y = east, north  # ENU
+    yaw_enu = math.pi / 2 - yaw_ned
+    o.pose.pose.orientation.z, o.pose.pose.orientation.w = math.sin(yaw_enu / 2), math.cos(yaw_enu / 2)
+    return o
+
+
+def path(points):
+    p = Path()
+    p.header.stamp = rospy.Time.now()
+    p.header.frame_id = "map_ned"
+    for n, e in points:
+        ps = PoseStamped()
+        ps.header = p.header
+        ps.pose.position.x, ps.pose.position.y = n, e
+        ps.pose.orientation.w = 1.0
+        p.poses.append(ps)
+    return p
+
+
+class GuidanceNodelets(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.status, cls.boxes, cls.planned, cls.joy = [], [], [], []
+        cls.subs = [rospy.Subscriber("/usv/guidance/status", GuidanceStatus, cls.status.append),
+                    rospy.Subscriber("/usv/guidance/safety_boxes", SafetyBoxArray, cls.boxes.append),
+                    rospy.Subscriber("/usv/guidance/planned_path", Path, cls.planned.append),
+                    rospy.Subscriber("/usv/joystick_cmd", JoystickCommand, cls.joy.append)]
+        cls.odom_pub = rospy.Publisher("/usv/odom", Odometry, queue_size=10)
+        cls.path_pub = rospy.Publisher("/usv/guidance/path", Path, queue_size=1, latch=True)
+        cls.obs_pub = rospy.Publisher("/usv/obstacles", TargetArray, queue_size=1)
+        cls.pose = (0.0, 3.0)
+        cls.timer = rospy.Timer(rospy.Duration(0.05), lambda _: cls.odom_pub.publish(odom(*cls.pose)))
+
+    def wait(self, what, cond, timeout=20.0):
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        while not rospy.is_shutdown() and rospy.Time.now() < deadline:
+            if cond():
+                return
+            rospy.sleep(0.05)
+        self.fail("timed out waiting for " + what)
+
+    def latest_status(self):
+        return self.status[-1] if self.status else None
+
+    def test_1_follow_avoid_and_bad_input(self):
+        type(self).pose = (0.0, 3.0)
+        self.path_pub.publish(path([(0, 0), (40, 0), (80, 0)]))
+        self.wait("path following", lambda: self.latest_status() and
+                  self.latest_status().mode == GuidanceStatus.MODE_FOLLOW_PATH)
+        s = self.latest_status()
+        self.assertAlmostEqual(s.cross_track_error, 3.0, places=2)  # 3 m east of a north leg = starboard
+        self.assertLess(s.desired_heading, 0.0)                     # steer to port
+        self.assertEqual(s.header.frame_id, "map_ned")
+        self.assertTrue(math.isnan(s.desired_depth))
+        self.wait("joystick", lambda: len(self.joy) > 3)
+        j = self.joy[-1]
+        self.assertEqual(j.source, JoystickCommand.SOURCE_AUTONOMY)
+        self.assertLess(j.yaw, 0.0, "joystick %s status %s" % (j, self.latest_status()))
+        self.assertGreater(j.surge, 0.0)
+
+        # a buoy on the route: safety box, detour inserted into the planned path
+        t = Target()
+        t.id = 42
+        t.origin.x, t.origin.y = 40.0, 0.5
+        t.length = t.width = 1.2
+        arr = TargetArray()
+        arr.header.frame_id = "map_ned"
+        arr.targets = [t]
+        n0 = len(self.planned)
+        self.wait("safety box", lambda: (self.obs_pub.publish(arr) or True) and self.boxes and
+                  any(b.cuts_path for b in self.boxes[-1].boxes))
+        box = [b for b in self.boxes[-1].boxes if b.cuts_path][0]
+        self.assertEqual(list(box.obstacle_ids), [42])
+        self.assertIn(box.side, (SafetyBox.SIDE_PORT, SafetyBox.SIDE_STARBOARD))
+        self.wait("planned path with detour", lambda: len(self.planned) > n0 and len(self.planned[-1].poses) > 3)
+
+        # one-point path: hold with a clear status, finite neutral-ish command
+        self.path_pub.publish(path([(10, 10)]))
+        self.wait("hold fault", lambda: self.latest_status().mode == GuidanceStatus.MODE_HOLD_FAULT)
+        self.assertIn("single waypoint", self.latest_status().status_text)
+        self.assertEqual(self.latest_status().desired_surge, 0.0)
+
+        # NaN pose: hold, never NaN on the outputs
+        self.path_pub.publish(path([(0, 0), (40, 0)]))
+        self.wait("following again", lambda: self.latest_status().mode == GuidanceStatus.MODE_FOLLOW_PATH)
+        type(self).pose = (float("nan"), 0.0)
+        self.wait("hold on NaN pose", lambda: self.latest_status().mode == GuidanceStatus.MODE_HOLD_FAULT)
+        n = len(self.joy)
+        self.wait("joystick during fault", lambda: len(self.joy) > n + 5)
+        for j in self.joy[n:]:
+            self.assertTrue(all(math.isfinite(v) for v in (j.surge, j.sway, j.yaw)))
+        s = self.latest_status()
+        for v in (s.desired_heading, s.desired_surge, s.cross_track_error, s.crab_angle):
+            self.assertTrue(math.isfinite(v))
+
+    def test_2_end_of_path_station_keeping(self):
+        type(self).pose = (0.0, 0.0)
+        self.path_pub.publish(path([(-20, 0), (0, 0)]))
+        self.wait("station keeping", lambda: self.latest_status() and
+                  self.latest_status().mode == GuidanceStatus.MODE_STATION_KEEPING)
+        self.assertEqual(self.latest_status().desired_surge, 0.0)
+        self.assertIn("end of path", self.latest_status().status_text)
+
+
+if __name__ == "__main__":
+    rospy.init_node("check_guidance_nodelets")
+    rostest.rosrun("offshore_gnc", "guidance_nodelets", GuidanceNodelets)

@@ -1,0 +1,98 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "offshore_gnc/control/vehicle_control.h"
+#include "offshore_gnc/models/auv.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::control;
+
+namespace {
+const double kNan = std::numeric_limits<double>::quiet_NaN();
+Reference follow(double heading, double surge = 1.0, double depth = 2.0) {
+  Reference r;
+  r.mode = RefMode::kFollow;
+  r.heading = heading;
+  r.surge = surge;
+  r.depth = depth;
+  return r;
+}
+}  // namespace
+
+TEST(Allocation, SetpointsThroughTheModelsInverseCurveGiveTheAllocatedThrust) {
+  const Girona500ControlParams p;
+  ThrustAllocator a(p.tcm, p.max_thrust, p.command_for);
+  models::AuvModel m(models::AuvParams::girona500());
+  const auto r = a.allocate(Eigen::Vector4d(-20.0, 8.0, 15.0, 2.0));
+  ASSERT_FALSE(r.saturated);
+  for (int i = 0; i < r.thrust.size(); ++i) EXPECT_NEAR(m.thrust(i, r.setpoint[i]), r.thrust[i], 1e-6) << i;
+  EXPECT_TRUE(a.allocate(Eigen::Vector4d(kNan, 0, 0, 0)).setpoint.allFinite());
+}
+
+TEST(Girona500, AllocationOnTheModelsTcmReproducesTheWrench) {
+  Girona500Controller ctrl;
+  VehicleState s;
+  s.position = Eigen::Vector3d(0, 0, 2);
+  Reference r;
+  r.mode = RefMode::kHold;
+  r.point = Eigen::Vector3d(0.05, -0.03, 0);
+  r.depth = 2.02;
+  r.heading = 0.01;
+  const auto o = ctrl.update(s, r);
+  ASSERT_FALSE(o.alloc.saturated);
+  EXPECT_NEAR((ctrl.allocator().tcm() * o.alloc.thrust - o.tau).norm(), 0.0, 1e-9);
+  EXPECT_GT(o.tau[0], 0.0);  // north error, yaw 0 -> surge force forward
+  EXPECT_LT(o.tau[1], 0.0);  // west error -> sway to port
+  EXPECT_GT(o.tau[2], 0.0);  // deeper -> down
+  EXPECT_GT(o.tau[3], 0.0);  // heading to starboard
+}
+
+TEST(Controllers, BadInputGivesNeutralNeverNaN) {
+  UsvController usv;
+  AcolorController ac;
+  Girona500Controller g5;
+  VehicleState bad;
+  bad.position.x() = kNan;
+  const auto j = usv.update(bad, follow(0.3));
+  EXPECT_EQ(j.surge, 0.0);
+  EXPECT_EQ(j.yaw, 0.0);
+  EXPECT_EQ(usv.counters().get("nan_state"), 1u);
+  for (auto ch : ac.update(bad, follow(0.3))) EXPECT_EQ(ch, 1500);
+  const auto o = g5.update(bad, follow(0.3));
+  EXPECT_TRUE(o.alloc.setpoint.allFinite());
+  EXPECT_EQ(o.alloc.setpoint.norm(), 0.0);
+  VehicleState ok;
+  const auto j2 = usv.update(ok, follow(kNan));
+  EXPECT_EQ(j2.yaw, 0.0);
+  EXPECT_EQ(usv.counters().get("bad_reference"), 1u);
+}
+
+TEST(Controllers, UsvTurnsTowardTheReferenceAcrossPlusMinusPi) {
+  UsvController usv;
+  VehicleState s;
+  s.yaw = 3.1;  // just short of +pi
+  s.velocity.x() = 1.0;
+  const auto j = usv.update(s, follow(-3.1, 1.0));  // 0.083 rad further to starboard through pi
+  EXPECT_GT(j.yaw, 0.0);
+  EXPECT_LE(std::abs(j.yaw), 1.0);
+  EXPECT_LE(std::abs(j.surge), 1.0);
+}
+
+TEST(Controllers, AcolorPwmChannels) {
+  AcolorController ac;
+  VehicleState s;
+  s.position.z() = 1.0;
+  const auto ch = ac.update(s, follow(-0.5, 0.5, 2.0));
+  ASSERT_EQ(ch.size(), 8u);
+  EXPECT_EQ(ch[4], 1650);  // constant surge on channel 5
+  EXPECT_LT(ch[3], 1500);  // yaw to port on channel 4
+  EXPECT_EQ(ch[2], 1800);  // heave P: 300 us/m x 1 m too shallow -> down
+  for (auto c : ch) {
+    EXPECT_GE(c, 1100);
+    EXPECT_LE(c, 1900);
+  }
+  EXPECT_EQ(AcolorController::pwm(5.0), 1900);
+  EXPECT_EQ(AcolorController::pwm(kNan), 1500);
+}

@@ -1,0 +1,218 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/guidance/los.h"
+#include "offshore_gnc/guidance/metrics.h"
+#include "offshore_gnc/guidance/paths.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::guidance;
+using V3 = Eigen::Vector3d;
+
+namespace {
+VehicleState at(double n, double e, double d = 0.0, double yaw = 0.0) {
+  VehicleState s;
+  s.position = V3(n, e, d);
+  s.yaw = yaw;
+  return s;
+}
+LosParams plain() {
+  LosParams p;
+  p.ki = 0.0;
+  p.adaptive_crab = false;
+  return p;
+}
+}  // namespace
+
+TEST(LosGeometry, HandComputedCases) {
+  double e, s;
+  // Leg north from the origin; vehicle 3 m east (starboard) and 4 m along.
+  EXPECT_NEAR(legGeometry({0, 0}, {10, 0}, {4, 3}, &e, &s), 0.0, 1e-12);
+  EXPECT_NEAR(e, 3.0, 1e-12);
+  EXPECT_NEAR(s, 4.0, 1e-12);
+  // Leg east: chi_p = 90 deg; a point north of it is to port (negative e).
+  EXPECT_NEAR(legGeometry({0, 0}, {0, 10}, {2, 5}, &e, &s), kPi / 2, 1e-12);
+  EXPECT_NEAR(e, -2.0, 1e-12);
+  EXPECT_NEAR(s, 5.0, 1e-12);
+  // Leg south-west (225 deg): point (0, -sqrt 2): e = -(0)(sin) + (-sqrt2)(cos(-135deg)) = 1.
+  EXPECT_NEAR(legGeometry({0, 0}, {-10, -10}, {0, -std::sqrt(2.0)}, &e, &s), -3 * kPi / 4, 1e-12);
+  EXPECT_NEAR(e, 1.0, 1e-12);
+  EXPECT_NEAR(s, 1.0, 1e-12);
+}
+
+TEST(Los, SteeringLawEq49to412) {
+  LosGuidance g(plain());
+  ASSERT_TRUE(g.setPath({V3(0, 0, 0), V3(100, 0, 0)}));
+  const auto o = g.update(at(10, 5), 0.1);
+  EXPECT_EQ(o.mode, Mode::kFollowPath);
+  EXPECT_NEAR(o.cross_track_error, 5.0, 1e-12);
+  // psi_d = chi_p + atan(-Kp e) = atan(-0.5)
+  EXPECT_NEAR(o.desired_heading, std::atan(-0.5), 1e-12);
+  EXPECT_NEAR(o.distance_to_go, std::hypot(90.0, 5.0), 1e-9);
+  EXPECT_NEAR(o.path_point.x(), 10.0, 1e-12);
+}
+
+TEST(Los, IntegralAntiWindupBoundsSteering) {
+  LosParams p = plain();
+  p.ki = 0.01;
+  p.integral_limit = 0.2;
+  LosGuidance g(p);
+  g.setPath({V3(0, 0, 0), V3(1000, 0, 0)});
+  LosOutput o;
+  for (int i = 0; i < 10000; ++i) o = g.update(at(10, 20), 0.1);
+  // Kp e = 2, integral term at most 0.2 -> psi_d = atan(-2.2)
+  EXPECT_NEAR(o.desired_heading, std::atan(-2.2), 1e-9);
+}
+
+TEST(Los, AdaptiveCrabGrowsWithStandingError) {
+  LosParams p = plain();
+  p.adaptive_crab = true;
+  LosGuidance g(p);
+  g.setPath({V3(0, 0, 0), V3(1000, 0, 0)});
+  LosOutput o;
+  for (int i = 0; i < 100; ++i) o = g.update(at(10, 1.0), 0.1);
+  EXPECT_GT(o.crab_angle, 0.0);  // drift to starboard -> beta_hat > 0 -> heading further to port
+  EXPECT_LT(o.desired_heading, std::atan(-0.1));
+  for (int i = 0; i < 100000; ++i) o = g.update(at(10, 50.0), 0.1);
+  EXPECT_NEAR(o.crab_angle, p.crab_limit, 1e-12);
+}
+
+TEST(Los, CircleOfAcceptanceSwitches) {
+  LosParams p = plain();
+  p.acceptance_radius = 5.0;
+  LosGuidance g(p);
+  g.setPath({V3(0, 0, 0), V3(50, 0, 0), V3(50, 50, 0)});
+  EXPECT_EQ(g.update(at(44, 2), 0.1).active_leg, 1u);  // 6.3 m from wp 1
+  EXPECT_EQ(g.update(at(46, 2), 0.1).active_leg, 2u);  // 4.5 m: inside the circle
+}
+
+TEST(Los, SphereOfAcceptanceUsesDepth) {
+  LosParams p = plain();
+  p.acceptance_radius = 3.0;
+  p.sphere = true;
+  LosGuidance g(p);
+  g.setPath({V3(0, 0, 5), V3(50, 0, 5), V3(50, 50, 5)});
+  // Horizontally 1 m short but 4 m too shallow: outside the sphere, and not yet passed.
+  EXPECT_EQ(g.update(at(49, 0, 1), 0.1).active_leg, 1u);
+  EXPECT_EQ(g.update(at(49, 0, 4), 0.1).active_leg, 2u);
+  EXPECT_NEAR(g.update(at(49, 0, 4), 0.1).desired_depth, 5.0, 1e-12);
+}
+
+TEST(Los, PassedWaypointRuleNeverLoopsBack) {
+  LosParams p = plain();
+  p.acceptance_radius = 2.0;
+  LosGuidance g(p);
+  g.setPath({V3(0, 0, 0), V3(50, 0, 0), V3(100, 0, 0)});
+  // Missed the circle by 10 m laterally but is beyond the waypoint along the leg.
+  const auto o = g.update(at(51, 10), 0.1);
+  EXPECT_EQ(o.active_leg, 2u);
+  EXPECT_NEAR(std::abs(o.desired_heading), std::atan(1.0), 1e-9);  // steers back to the path, not to wp 1
+}
+
+TEST(Los, EndOfPathStationKeeping) {
+  LosGuidance g(plain());
+  g.setPath({V3(0, 0, 0), V3(50, 0, 0)});
+  const auto o = g.update(at(60, 1), 0.1);
+  EXPECT_EQ(o.mode, Mode::kStationKeeping);
+  EXPECT_EQ(o.desired_surge, 0.0);
+  EXPECT_NEAR(o.hold_position.x(), 50.0, 1e-12);
+  EXPECT_FALSE(o.status_text.empty());
+  EXPECT_EQ(g.update(at(0, 0), 0.1).mode, Mode::kStationKeeping);  // stays finished
+}
+
+TEST(Los, BadInputHoldsWithoutNaN) {
+  LosGuidance g(plain());
+  auto finite = [](const LosOutput& o) {
+    return std::isfinite(o.desired_heading) && std::isfinite(o.desired_surge) && std::isfinite(o.desired_depth) &&
+           o.hold_position.allFinite() && std::isfinite(o.cross_track_error) && std::isfinite(o.crab_angle);
+  };
+  // no path
+  auto o = g.update(at(1, 2), 0.1);
+  EXPECT_EQ(o.mode, Mode::kIdle);
+  EXPECT_TRUE(finite(o));
+  // one-point path
+  EXPECT_FALSE(g.setPath({V3(5, 5, 0)}));
+  o = g.update(at(1, 2), 0.1);
+  EXPECT_EQ(o.mode, Mode::kHoldFault);
+  EXPECT_NE(o.status_text.find("single waypoint"), std::string::npos);
+  EXPECT_EQ(o.desired_surge, 0.0);
+  EXPECT_TRUE(finite(o));
+  // duplicates only
+  EXPECT_FALSE(g.setPath({V3(5, 5, 0), V3(5, 5, 0), V3(5, 5, 0)}));
+  EXPECT_EQ(g.update(at(1, 2), 0.1).mode, Mode::kHoldFault);
+  // duplicates merged in an otherwise good path
+  EXPECT_TRUE(g.setPath({V3(0, 0, 0), V3(0, 0, 0), V3(20, 0, 0), V3(20, 0, 0), V3(40, 0, 0)}));
+  EXPECT_EQ(g.path().size(), 3u);
+  EXPECT_GT(g.counters().get("duplicate_waypoints"), 0u);
+  // NaN waypoint
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(g.setPath({V3(0, 0, 0), V3(nan, 0, 0)}));
+  EXPECT_EQ(g.update(at(1, 2), 0.1).mode, Mode::kHoldFault);
+  // NaN pose on a good path: hold the last good position
+  g.setPath({V3(0, 0, 0), V3(100, 0, 0)});
+  g.update(at(3, 4), 0.1);
+  o = g.update(at(nan, 0), 0.1);
+  EXPECT_EQ(o.mode, Mode::kHoldFault);
+  EXPECT_TRUE(finite(o));
+  EXPECT_NEAR(o.hold_position.x(), 3.0, 1e-12);
+  EXPECT_EQ(g.counters().get("nan_pose"), 1u);
+  // NaN dt does not poison the integrators
+  o = g.update(at(3, 4), nan);
+  EXPECT_TRUE(finite(o));
+}
+
+TEST(Los, ResumeKeepsProgressOnReplan) {
+  LosGuidance g(plain());
+  g.setPath({V3(0, 0, 0), V3(10, 0, 0), V3(20, 0, 0), V3(30, 0, 0)});
+  g.update(at(25, 0.5), 0.1);
+  ASSERT_TRUE(g.setPath({V3(0, 0, 0), V3(10, 0, 0), V3(20, 0, 0), V3(30, 0, 0), V3(40, 0, 0)}, true));
+  EXPECT_EQ(g.activeLeg(), 3u);
+}
+
+TEST(Paths, StraightLineEvery10m) {
+  const auto p = straightLine(V3(0, 0, 0), V3(35, 0, 0));
+  ASSERT_EQ(p.size(), 5u);
+  EXPECT_NEAR(p[1].x(), 10.0, 1e-12);
+  EXPECT_NEAR(p[3].x(), 30.0, 1e-12);
+  EXPECT_NEAR(p[4].x(), 35.0, 1e-12);
+  EXPECT_EQ(straightLine(V3(0, 0, 0), V3(40, 0, 0)).size(), 5u);
+  // target at the vehicle's own position: empty (guidance reports "no path" and holds)
+  EXPECT_TRUE(straightLine(V3(3, 4, 0), V3(3, 4, 0)).empty());
+  EXPECT_TRUE(straightLine(V3(std::nan(""), 4, 0), V3(3, 4, 0)).empty());
+}
+
+TEST(Paths, Lawnmower) {
+  const auto p = lawnmower({0, 0}, 0.0, 40.0, 20.0, 10.0, 5.0);
+  ASSERT_EQ(p.size(), 6u);  // three tracks
+  EXPECT_NEAR(p[1].x(), 40.0, 1e-12);
+  EXPECT_NEAR(p[2].y(), 10.0, 1e-12);
+  EXPECT_NEAR(p[2].x(), 40.0, 1e-12);
+  EXPECT_NEAR(p[3].x(), 0.0, 1e-12);
+  EXPECT_NEAR(p[5].y(), 20.0, 1e-12);
+  for (const auto& w : p) EXPECT_EQ(w.z(), 5.0);
+  EXPECT_TRUE(lawnmower({0, 0}, 0.0, -1.0, 20.0, 10.0, 5.0).empty());
+}
+
+TEST(Metrics, RmseSdMae) {
+  const auto m = computeMetrics({1.0, -1.0, 3.0, -3.0, std::nan("")});
+  EXPECT_EQ(m.samples, 4u);
+  EXPECT_NEAR(m.rmse, std::sqrt(5.0), 1e-12);
+  EXPECT_NEAR(m.mae, 2.0, 1e-12);
+  EXPECT_NEAR(m.sd, std::sqrt(5.0), 1e-12);
+  const auto b = computeMetrics({2.0, 2.0});
+  EXPECT_NEAR(b.sd, 0.0, 1e-12);
+  EXPECT_NEAR(b.rmse, 2.0, 1e-12);
+}
+
+TEST(Metrics, CsvColumnWithModeFilter) {
+  std::istringstream in("t,mode,cross_track_error\n0,1,1.0\n0.1,2,9.0\n0.2,1,-1.0\n");
+  const auto v = readCsvColumn(in, "cross_track_error", 1);
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_EQ(v[1], -1.0);
+  std::istringstream bad("t,x\n0,1\n");
+  EXPECT_THROW(readCsvColumn(bad, "cross_track_error"), std::runtime_error);
+}

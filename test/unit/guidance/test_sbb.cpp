@@ -1,0 +1,139 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/guidance/paths.h"
+#include "offshore_gnc/guidance/sbb.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::guidance;
+using V2 = Eigen::Vector2d;
+using V3 = Eigen::Vector3d;
+
+namespace {
+SbbObstacle buoy(std::uint32_t id, double n, double e, double size = 2.0) {
+  SbbObstacle o;
+  o.id = id;
+  o.origin = V2(n, e);
+  o.length = size;
+  o.width = size;
+  return o;
+}
+SbbParams params() {
+  SbbParams p;
+  p.safety_x = 5.0;
+  p.safety_y = 4.0;
+  p.corridor = 1.0;
+  p.max_offset = 30.0;
+  return p;
+}
+bool insideAny(const V2& w, const std::vector<SbbBox>& boxes) {
+  for (const auto& b : boxes)
+    if (b.contains(w, 1e-6)) return true;
+  return false;
+}
+}  // namespace
+
+TEST(Sbb, CornersMatchEq46ForSeveralAnglesBothSides) {
+  const SbbParams p = params();
+  for (double deg : {0.0, 30.0, 90.0, 135.0, -60.0, 180.0}) {
+    const double a = deg2rad(deg);
+    const SbbObstacle o = buoy(1, 12.0, -7.0, 3.0);
+    const SbbBox b = makeBox(o, a, p);
+    // eq. 4.5: half extents (the thesis' L_box, W_box) = d + L_obs / 2
+    const double hl = p.safety_x + 1.5, hw = p.safety_y + 1.5;
+    EXPECT_NEAR(b.length, 2 * hl, 1e-12);
+    EXPECT_NEAR(b.width, 2 * hw, 1e-12);
+    const Eigen::Rotation2Dd rz(a);  // xy-plane counterclockwise rotation = NED yaw sense in (N, E)
+    const V2 expect[4] = {o.origin + rz * V2(-hl, -hw), o.origin + rz * V2(hl, -hw), o.origin + rz * V2(hl, hw),
+                          o.origin + rz * V2(-hl, hw)};
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR((b.corners[i] - expect[i]).norm(), 0.0, 1e-9) << deg << " corner " << i;
+  }
+}
+
+TEST(Sbb, DetourOnTheSideCloserToTheVehicle) {
+  const SbbParams p = params();
+  for (double deg : {0.0, 45.0, 200.0}) {
+    const double a = deg2rad(deg);
+    const V2 u(std::cos(a), std::sin(a)), v(-std::sin(a), std::cos(a));
+    const std::vector<V3> path = {V3::Zero(), V3(100 * u.x(), 100 * u.y(), 0)};
+    // obstacle 1 m to starboard of the path at 50 m
+    const SbbObstacle o = buoy(7, 50 * u.x() + v.x(), 50 * u.y() + v.y());
+    for (int side : {-1, 1}) {
+      const V2 vehicle = side * 3.0 * v;
+      const SbbPlan plan = planSbb(path, vehicle, {o}, p);
+      ASSERT_EQ(plan.boxes.size(), 1u);
+      const SbbBox& b = plan.boxes[0];
+      EXPECT_TRUE(b.cuts_path);
+      EXPECT_EQ(static_cast<int>(b.side), side);
+      ASSERT_EQ(plan.path.size(), 4u) << plan.status;
+      // detour waypoints: rear and front corners of that side, pushed out by the corridor
+      const int rear = side < 0 ? 0 : 3, front = side < 0 ? 1 : 2;
+      const V2 out = side * p.corridor * v;
+      EXPECT_NEAR((plan.path[1].head<2>() - (b.corners[rear] + out)).norm(), 0.0, 1e-9);
+      EXPECT_NEAR((plan.path[2].head<2>() - (b.corners[front] + out)).norm(), 0.0, 1e-9);
+      EXPECT_FALSE(plan.blocked);
+    }
+  }
+}
+
+TEST(Sbb, ObstacleOffThePathIsIgnored) {
+  const SbbPlan plan = planSbb({V3(0, 0, 0), V3(100, 0, 0)}, V2(0, 0), {buoy(1, 50, 20)}, params());
+  ASSERT_EQ(plan.boxes.size(), 1u);
+  EXPECT_FALSE(plan.boxes[0].cuts_path);
+  EXPECT_EQ(plan.path.size(), 2u);
+  EXPECT_FALSE(plan.modified);
+}
+
+TEST(Sbb, OverlappingBoxesMergedAndNoWaypointInsideAnyBox) {
+  // Two buoys whose boxes overlap, a third further on, on a 10 m-spaced path (paper 3.2.3).
+  const auto path = straightLine(V3(0, 0, 0), V3(120, 0, 0), 10.0);
+  const std::vector<SbbObstacle> obs = {buoy(1, 40, 0), buoy(2, 46, 3), buoy(3, 90, -2)};
+  const SbbPlan plan = planSbb(path, V2(0, 0), obs, params());
+  EXPECT_FALSE(plan.blocked);
+  int merged = 0;
+  for (const auto& b : plan.boxes)
+    if (b.ids.size() == 2) ++merged;
+  EXPECT_GE(merged, 1);
+  std::vector<SbbBox> all;
+  for (const auto& o : obs) all.push_back(makeBox(o, 0.0, params()));
+  for (const auto& w : plan.path) EXPECT_FALSE(insideAny(w.head<2>(), all)) << w.transpose();
+  // the straight segments between consecutive waypoints never cross a box (sampled)
+  for (std::size_t i = 1; i < plan.path.size(); ++i)
+    for (double t = 0; t <= 1.0; t += 0.01) {
+      const V2 q = plan.path[i - 1].head<2>() + t * (plan.path[i] - plan.path[i - 1]).head<2>();
+      EXPECT_FALSE(insideAny(q, all)) << "segment " << i << " at " << q.transpose();
+    }
+  EXPECT_EQ(plan.path.back(), path.back());
+}
+
+TEST(Sbb, BlockedWhenNoSideFits) {
+  SbbParams p = params();
+  p.max_offset = 4.0;  // a narrow channel: the detour needs ~8 m
+  const SbbPlan plan = planSbb({V3(0, 0, 0), V3(100, 0, 0)}, V2(0, 0), {buoy(5, 50, 0)}, p);
+  EXPECT_TRUE(plan.blocked);
+  ASSERT_FALSE(plan.boxes.empty());
+  EXPECT_EQ(plan.boxes[0].side, SbbSide::kBlocked);
+  EXPECT_NE(plan.status.find("blocked"), std::string::npos);
+  EXPECT_NE(plan.status.find("5"), std::string::npos);
+  // the path ends before the box
+  EXPECT_LT(plan.path.back().x(), plan.boxes[0].center.x() - plan.boxes[0].length / 2);
+}
+
+TEST(Sbb, OtherSideWhenTheNearSideIsTooFar) {
+  SbbParams p = params();
+  p.max_offset = 9.0;
+  // obstacle 4 m to port: port detour at -(4+1+4+1)= -10 > max; starboard at 4-... fits
+  const SbbPlan plan = planSbb({V3(0, 0, 0), V3(100, 0, 0)}, V2(0, -5), {buoy(1, 50, -4)}, p);
+  ASSERT_EQ(plan.boxes.size(), 1u);
+  EXPECT_EQ(plan.boxes[0].side, SbbSide::kStarboard);
+}
+
+TEST(Sbb, NonFiniteObstaclesIgnored) {
+  SbbObstacle o = buoy(1, std::nan(""), 0);
+  const SbbPlan plan = planSbb({V3(0, 0, 0), V3(100, 0, 0)}, V2(0, 0), {o}, params());
+  EXPECT_EQ(plan.path.size(), 2u);
+  for (const auto& w : plan.path) EXPECT_TRUE(w.allFinite());
+}

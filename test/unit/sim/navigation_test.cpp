@@ -1,0 +1,56 @@
+// GPS-compass navigation: fixes and heading back to the local pose, lever arm removed, velocity from fixes,
+// bad input counted.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/sim/navigation.h"
+#include "offshore_gnc/sim/sensors.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::sim;
+
+TEST(GpsNavigator, RecoversTheSimulatedPoseAndVelocity) {
+  const geo::LocalNed frame(geo::kPyhajarviOrigin);
+  GpsCompassConfig gc;
+  gc.position_sigma = gc.altitude_sigma = gc.heading_sigma = 0.0;
+  gc.antenna = {2.0, 0.5, -2.5};
+  GpsCompass gps(gc, frame, 1);
+  GpsNavigatorConfig nc;
+  nc.antenna = gc.antenna;
+  nc.velocity_filter = 0.0;
+  GpsNavigator nav(geo::kPyhajarviOrigin, nc);
+  VehicleState s;
+  s.yaw = deg2rad(30.0);
+  std::optional<VehicleState> est;
+  for (int i = 0; i < 20; ++i) {  // 2 m/s along the heading, fixes at 10 Hz
+    s.t = 0.1 * i;
+    s.position = {2.0 * s.t * std::cos(s.yaw) + 10.0, 2.0 * s.t * std::sin(s.yaw) - 5.0, 0.0};
+    const auto r = gps.measure(s);
+    ASSERT_TRUE(nav.heading(r.t, r.heading));
+    est = nav.fix(r.t, r.fix);
+    ASSERT_TRUE(est);
+  }
+  EXPECT_NEAR(est->position.x(), s.position.x(), 1e-6);
+  EXPECT_NEAR(est->position.y(), s.position.y(), 1e-6);
+  EXPECT_NEAR(est->yaw, s.yaw, 1e-12);
+  EXPECT_NEAR(est->velocity.x(), 2.0, 1e-6);  // body surge
+  EXPECT_NEAR(est->velocity.y(), 0.0, 1e-6);
+}
+
+TEST(GpsNavigator, RefusesBadOrUnsupportedFixes) {
+  GpsNavigator nav(geo::kPyhajarviOrigin, GpsNavigatorConfig{});
+  EXPECT_FALSE(nav.fix(1.0, geo::kPyhajarviOrigin));  // no heading yet
+  EXPECT_EQ(nav.counters().get("fix_without_heading"), 1u);
+  EXPECT_FALSE(nav.heading(1.0, NAN));
+  EXPECT_EQ(nav.counters().get("bad_heading"), 1u);
+  ASSERT_TRUE(nav.heading(1.0, 0.0));
+  EXPECT_FALSE(nav.fix(1.0, {NAN, 23.7, 0.0}));
+  EXPECT_FALSE(nav.fix(1.0, {91.0, 23.7, 0.0}));
+  EXPECT_EQ(nav.counters().get("bad_fix"), 2u);
+  EXPECT_TRUE(nav.fix(1.0, geo::kPyhajarviOrigin));
+  EXPECT_FALSE(nav.fix(0.5, geo::kPyhajarviOrigin));  // older than the last one
+  EXPECT_EQ(nav.counters().get("stale_fix"), 1u);
+  EXPECT_FALSE(nav.fix(3.0, geo::kPyhajarviOrigin));  // heading 2 s old
+}

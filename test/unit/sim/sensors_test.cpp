@@ -1,0 +1,257 @@
+// Sensor simulators: geometry of returns, NaN for no return, sonar echo bins, noise-free readings, seeds.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/sim/sensors.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::sim;
+
+namespace {
+LidarConfig quietLidar() {
+  LidarConfig c;
+  c.range_sigma = 0.0;
+  c.mount = {0.0, 0.0, -1.0};  // 1 m above the water, at the vehicle's origin
+  return c;
+}
+int beamOf(const LidarScan& s, double az) {
+  return static_cast<int>(std::lround((az - s.azimuth.front()) / (s.azimuth[1] - s.azimuth[0])));
+}
+float rangeAt(const LidarScan& s, int layer, double az) { return s.ranges[layer * s.beams + beamOf(s, az)]; }
+}  // namespace
+
+TEST(Lidar, GeometryOfTheMrs1000) {
+  World w;
+  Lidar lidar(quietLidar(), w, 1);
+  LidarScan s;
+  lidar.scan(VehicleState{}, s);
+  EXPECT_EQ(s.layers, 4);
+  EXPECT_EQ(s.beams, 1101);  // 275 deg / 0.25 deg + 1
+  EXPECT_NEAR(rad2deg(s.azimuth.front()), -137.5, 1e-9);
+  EXPECT_NEAR(rad2deg(s.azimuth.back()), 137.5, 1e-6);
+  EXPECT_NEAR(rad2deg(s.elevation.back() - s.elevation.front()), 7.5, 1e-4);
+  // empty world: every beam is "no return"
+  EXPECT_TRUE(std::all_of(s.ranges.begin(), s.ranges.end(), [](float r) { return std::isnan(r); }));
+}
+
+TEST(Lidar, BuoyAppearsAtItsRangeAndBearing) {
+  World w;
+  w.buoys.push_back({{0.0, 20.0}, 0.5, 3.0});  // 20 m east
+  Lidar lidar(quietLidar(), w, 1);
+  LidarScan s;
+  lidar.scan(VehicleState{}, s);  // heading north: the buoy is 90 deg to starboard
+  const double az = deg2rad(90.0);
+  for (int l = 0; l < 4; ++l) EXPECT_NEAR(rangeAt(s, l, az) * std::cos(s.elevation[l]), 19.5, 1e-4) << "layer " << l;
+  const Eigen::Vector3d p = s.pointFrd(1, beamOf(s, az));
+  EXPECT_NEAR(p.x(), 0.0, 1e-3);
+  EXPECT_NEAR(p.y(), 19.5, 1e-3);
+  EXPECT_TRUE(std::isnan(rangeAt(s, 1, 0.0)));  // straight ahead: nothing
+  EXPECT_TRUE(std::isnan(rangeAt(s, 1, deg2rad(80.0))));
+
+  VehicleState east;
+  east.yaw = deg2rad(90.0);  // now the buoy is dead ahead
+  lidar.scan(east, s);
+  EXPECT_NEAR(rangeAt(s, 1, 0.0), 19.5, 1e-4);
+  EXPECT_TRUE(std::isnan(rangeAt(s, 1, az)));
+}
+
+TEST(Lidar, UpperLayerPassesOverALowBuoyAndDownLayerEndsOnWater) {
+  World w;
+  w.buoys.push_back({{20.0, 0.0}, 0.5, 1.0});  // 1 m high, sensor 1 m above water
+  Lidar lidar(quietLidar(), w, 1);
+  LidarScan s;
+  lidar.scan(VehicleState{}, s);
+  EXPECT_FALSE(std::isnan(rangeAt(s, 0, 0.0)));  // -2.5 deg: hits the buoy before the water (22.9 m)
+  EXPECT_FALSE(std::isnan(rangeAt(s, 1, 0.0)));
+  EXPECT_TRUE(std::isnan(rangeAt(s, 3, 0.0)));   // +5 deg: 2.7 m up at the buoy, over its top
+
+  World far;
+  far.buoys.push_back({{40.0, 0.0}, 0.5, 1.0});  // beyond the -2.5 deg layer's water intersection
+  Lidar l2(quietLidar(), far, 1);
+  l2.scan(VehicleState{}, s);
+  EXPECT_TRUE(std::isnan(rangeAt(s, 0, 0.0)));
+  EXPECT_NEAR(rangeAt(s, 1, 0.0), 39.5, 1e-4);
+}
+
+TEST(Lidar, OutOfRangeAndShorelinesAndVessels) {
+  World w;
+  w.buoys.push_back({{100.0, 0.0}, 0.5, 3.0});  // beyond 64 m
+  w.shorelines.push_back({{-10, -30}, {10, -30}, {10, -40}, {-10, -40}});  // land 30 m to the west
+  Vessel v;
+  v.centre = {-15.0, 0.0};  // astern-ish, outside the 275 deg aperture? no: 180 deg is in the 85 deg blind sector
+  w.vessels.push_back(v);
+  Lidar lidar(quietLidar(), w, 1);
+  LidarScan s;
+  lidar.scan(VehicleState{}, s);
+  EXPECT_TRUE(std::isnan(rangeAt(s, 1, 0.0)));
+  EXPECT_NEAR(rangeAt(s, 3, deg2rad(-90.0)) * std::cos(s.elevation[3]), 30.0, 1e-4);  // land is high
+  const int n = std::count_if(s.ranges.begin(), s.ranges.end(), [](float r) { return !std::isnan(r); });
+  EXPECT_GT(n, 0);
+  VehicleState south;
+  south.yaw = kPi;  // turn around: the vessel (8 m x 3 m box, long axis north) is 11 m ahead
+  lidar.scan(south, s);
+  EXPECT_NEAR(rangeAt(s, 1, 0.0), 11.0, 1e-4);
+}
+
+TEST(Lidar, NoiseIsDeterministicForASeed) {
+  World w;
+  w.shorelines.push_back({{30, -100}, {30, 100}, {40, 100}, {40, -100}});
+  LidarConfig c = quietLidar();
+  c.range_sigma = 0.05;
+  Lidar a(c, w, 42), b(c, w, 42), other(c, w, 43);
+  LidarScan sa, sb, so;
+  a.scan(VehicleState{}, sa);
+  b.scan(VehicleState{}, sb);
+  other.scan(VehicleState{}, so);
+  ASSERT_EQ(sa.ranges.size(), sb.ranges.size());
+  for (std::size_t i = 0; i < sa.ranges.size(); ++i)
+    if (!std::isnan(sa.ranges[i])) {
+      EXPECT_EQ(sa.ranges[i], sb.ranges[i]);
+    }
+  const float r = rangeAt(sa, 1, 0.0), ro = rangeAt(so, 1, 0.0);
+  EXPECT_NE(r, ro);
+  EXPECT_NEAR(r, 30.0, 0.3);
+}
+
+TEST(Lidar, RejectsBadConfig) {
+  LidarConfig c;
+  c.max_range = 0.1;  // below min_range
+  EXPECT_THROW(Lidar(c, World{}, 1), ConfigError);
+  c = LidarConfig{};
+  c.layer_elevation.pop_back();
+  EXPECT_THROW(Lidar(c, World{}, 1), ConfigError);
+}
+
+namespace {
+SonarConfig quietSonar() {
+  SonarConfig c;
+  c.mount = Eigen::Vector3d::Zero();
+  return c;
+}
+// Pings until the head points at `angle` (signed, clockwise from forward) and returns that beam.
+SonarBeamReading beamAt(Sonar& sonar, const VehicleState& s, double angle) {
+  SonarBeamReading b;
+  for (int i = 0; i < 200; ++i) {
+    sonar.ping(s, b);
+    if (std::abs(angleDiff(b.bearing, angle)) < sonar.config().step / 2) return b;
+  }
+  ADD_FAILURE() << "head never reached " << angle;
+  return b;
+}
+int peakBin(const SonarBeamReading& b, int from) {
+  return static_cast<int>(std::max_element(b.intensities.begin() + from, b.intensities.end()) - b.intensities.begin());
+}
+}  // namespace
+
+TEST(Sonar, TargetEchoAtItsBin) {
+  World w;
+  w.targets.push_back({{5.0, 0.0, 2.0}, 0.3});  // 5 m ahead at the head's depth
+  Sonar sonar(quietSonar(), w, 3);
+  VehicleState s;
+  s.position.z() = 2.0;
+  const auto b = beamAt(sonar, s, 0.0);
+  ASSERT_EQ(b.intensities.size(), 200u);
+  EXPECT_NEAR(b.range_resolution, 0.05, 1e-12);
+  const int far_from = sonar.binOfRange(2.0);
+  EXPECT_NEAR(peakBin(b, far_from), sonar.binOfRange(4.7), 1);
+  EXPECT_GT(b.intensities[peakBin(b, far_from)], 150);
+  // a beam 30 deg off: no echo above the speckle beyond the near field
+  Sonar sonar2(quietSonar(), w, 3);
+  const auto off = beamAt(sonar2, s, deg2rad(30.0));
+  EXPECT_LT(off.intensities[peakBin(off, far_from)], 120);
+}
+
+TEST(Sonar, WallEchoAndNearFieldClutter) {
+  World w;
+  w.walls.push_back({{8.0, -20.0}, {8.0, 20.0}});
+  Sonar sonar(quietSonar(), w, 4);
+  const auto b = beamAt(sonar, VehicleState{}, 0.0);
+  const int from = sonar.binOfRange(2.0);
+  EXPECT_NEAR(peakBin(b, from), sonar.binOfRange(8.0), 1);
+  double near = 0, mid = 0;
+  for (int i = 0; i < sonar.binOfRange(1.0); ++i) near += b.intensities[i];
+  for (int i = sonar.binOfRange(3.0); i < sonar.binOfRange(7.0); ++i) mid += b.intensities[i];
+  near /= sonar.binOfRange(1.0);
+  mid /= sonar.binOfRange(7.0) - sonar.binOfRange(3.0);
+  EXPECT_GT(near, 2.0 * mid);
+  EXPECT_GT(mid, 1.0);  // speckle, not silence
+}
+
+TEST(Sonar, SectorScanBackAndForthWithStatusBits) {
+  Sonar sonar(quietSonar(), World{}, 5);
+  SonarBeamReading b;
+  int reversals = 0;
+  double lo = 10, hi = -10;
+  bool seen_cw = false, seen_ccw = false;
+  for (int i = 0; i < 150; ++i) {
+    sonar.ping(VehicleState{}, b);
+    const double a = angleDiff(b.bearing, 0.0);
+    lo = std::min(lo, a);
+    hi = std::max(hi, a);
+    EXPECT_TRUE(b.head_status & kHeadReady);
+    EXPECT_TRUE(b.head_status & kMotorOn);
+    EXPECT_FALSE(b.head_status & kFault);
+    (b.head_status & kScanCw ? seen_cw : seen_ccw) = true;
+    if (b.head_status & kSectorReverse) ++reversals;
+    EXPECT_GE(b.bearing, 0.0);
+    EXPECT_LT(b.bearing, 2 * kPi);
+  }
+  EXPECT_NEAR(rad2deg(lo), -45.0, 1.8);
+  EXPECT_NEAR(rad2deg(hi), 45.0, 1.8);
+  EXPECT_TRUE(seen_cw && seen_ccw);
+  EXPECT_GE(reversals, 2);  // 150 beams of 1.8 deg over a 90 deg sector: 50 beams per sweep
+}
+
+TEST(GpsCompass, FixAndHeading) {
+  GpsCompassConfig c;
+  c.position_sigma = c.altitude_sigma = c.heading_sigma = 0.0;
+  c.antenna = {1.0, 0.0, -2.0};
+  geo::LocalNed frame(geo::kPyhajarviOrigin);
+  GpsCompass gps(c, frame, 1);
+  VehicleState s;
+  s.position = {100.0, -50.0, 0.0};
+  s.yaw = deg2rad(90.0);
+  const auto r = gps.measure(s);
+  const Eigen::Vector3d ned = frame.toNed(r.fix);
+  EXPECT_NEAR(ned.x(), 100.0, 1e-6);
+  EXPECT_NEAR(ned.y(), -49.0, 1e-6);  // antenna 1 m forward, vessel heading east
+  EXPECT_NEAR(r.fix.alt_m, 2.0, 2e-3);  // + earth curvature over 112 m (d^2 / 2R)
+  EXPECT_NEAR(r.heading, deg2rad(90.0), 1e-12);
+}
+
+TEST(DepthAndAhrs, PhysicalReadings) {
+  DepthConfig dc;
+  dc.sigma_pa = 0;
+  DepthSensor d(dc, 1);
+  VehicleState s;
+  s.position.z() = 10.0;
+  EXPECT_NEAR(d.measure(s).pressure_pa, 101325.0 + 1000.0 * 9.80665 * 10.0, 1e-6);
+  EXPECT_NEAR(d.depthOf(d.measure(s).pressure_pa), 10.0, 1e-9);
+  AhrsConfig ac;
+  ac.attitude_sigma = ac.heading_sigma = ac.gyro_sigma = ac.accel_sigma = 0;
+  Ahrs ahrs(ac, 1);
+  s.yaw = 1.0;
+  const auto r = ahrs.measure(s, Eigen::Vector3d::Zero());
+  EXPECT_NEAR(r.specific_force.z(), -9.80665, 1e-9);  // at rest, level: the reaction to gravity, up
+  EXPECT_NEAR(r.yaw, 1.0, 1e-12);
+}
+
+TEST(InsEstimate, DriftGrowsLikeARandomWalk) {
+  InsConfig c;
+  c.position_sigma = 0;
+  InsEstimate ins(c, 9);
+  VehicleState s;
+  double sum_sq = 0;
+  for (int i = 0; i <= 3600; ++i) {
+    s.t = i;
+    ins.estimate(s);
+  }
+  sum_sq = ins.drift().squaredNorm();
+  // expected |drift|^2 = 2 * 0.02^2 * 3600 = 2.88 m^2; accept a wide band for one realisation
+  EXPECT_GT(sum_sq, 0.01);
+  EXPECT_LT(sum_sq, 30.0);
+}
