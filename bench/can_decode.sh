@@ -2,7 +2,7 @@
 # Baseline: what a user without our tool writes (Python 3 stdlib: regex + struct; NMEA 2000 PGNs only, so it
 # skips the waterjet frames that can_decode checks (CRC) and decodes: its object count is lower).
 set -euo pipefail
-WS="${WS:-$REPO/build/ws}"
+WS="${WS:-$REPO/build/.ws}"
 bin="$WS/devel/lib/offshore_gnc/can_decode"
 [ -x "$bin" ] || { echo "can_decode not built in $WS" >&2; exit 1; }
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT

@@ -12,9 +12,10 @@ unset PYTHONPATH PYENV_VERSION || true
 log() { printf '\033[1m[%s]\033[0m %s\n' "$(basename "$0")" "$*" >&2; }
 
 # Workspace kept in a git-ignored folder, the package linked into its src/.
-# Under build/: rosrun searches the package folder but skips its build/ (a workspace elsewhere in the repo
-# would make every tool appear twice and rosrun refuse to choose).
-ws_dir() { echo "$REPO/build/ws${WS_SUFFIX:-}"; }
+# In build/.ws: rosrun searches the package folder but skips build/ (elsewhere every tool would appear twice
+# and rosrun refuse to choose), and roslaunch/rostest's search skips hidden folders (elsewhere it would loop
+# forever through the workspace's link back to the package).
+ws_dir() { echo "$REPO/build/.ws${WS_SUFFIX:-}"; }
 
 ws_build() {  # ws_build [extra cmake args...]
   local ws; ws="$(ws_dir)"

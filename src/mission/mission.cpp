@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/guidance/paths.h"
 
 namespace offshore_gnc {
 namespace mission {
@@ -108,37 +109,15 @@ const char* toString(UsvPhase p) {
   return "?";
 }
 
-std::vector<Eigen::Vector2d> straightPath(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double spacing) {
-  std::vector<Eigen::Vector2d> path;
-  if (!from.allFinite() || !to.allFinite() || !(spacing > 0.0)) return path;
-  const double len = (to - from).norm();
-  const int legs = std::max(1, static_cast<int>(std::ceil(len / spacing - 1e-9)));
-  const Eigen::Vector2d dir = len > 0.0 ? Eigen::Vector2d((to - from) / len) : Eigen::Vector2d::Zero();
-  path.push_back(from);
-  for (int i = 1; i < legs; ++i) path.push_back(from + dir * (spacing * i));
-  path.push_back(to);
-  return path;
-}
-
 std::vector<Eigen::Vector2d> holdPath(const Eigen::Vector2d& p, double heading, double lead_in) {
   if (!p.allFinite() || !std::isfinite(heading) || !(lead_in > 0.0)) return {};
   return {p - lead_in * Eigen::Vector2d(std::cos(heading), std::sin(heading)), p};
 }
 
 std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a) {
-  std::vector<Eigen::Vector3d> path;
-  const bool ok = std::isfinite(a.north_min) && std::isfinite(a.north_max) && std::isfinite(a.east_min) &&
-                  std::isfinite(a.east_max) && std::isfinite(a.depth) && a.north_max > a.north_min &&
-                  a.east_max >= a.east_min && a.spacing > 0.0;
-  if (!ok) return path;
-  const int legs = static_cast<int>(std::floor((a.east_max - a.east_min) / a.spacing + 1e-9)) + 1;
-  for (int i = 0; i < legs; ++i) {
-    const double e = a.east_min + i * a.spacing;
-    const bool north_bound = (i % 2) == 0;
-    path.emplace_back(north_bound ? a.north_min : a.north_max, e, a.depth);
-    path.emplace_back(north_bound ? a.north_max : a.north_min, e, a.depth);
-  }
-  return path;
+  if (!(a.north_max > a.north_min)) return {};
+  return guidance::lawnmower({a.north_min, a.east_min}, 0.0, a.north_max - a.north_min, a.east_max - a.east_min,
+                             a.spacing, a.depth);
 }
 
 UsvMission::UsvMission(const UsvMissionParams& p) : p_(p) { p_.validate(); }
@@ -177,7 +156,10 @@ bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
     ++path_version_;
     return false;
   }
-  path_ = straightPath(*pose_, goal, p_.waypoint_spacing);
+  path_.clear();
+  for (const auto& w : guidance::straightLine({pose_->x(), pose_->y(), 0.0}, {goal.x(), goal.y(), 0.0},
+                                              p_.waypoint_spacing))
+    path_.push_back(w.head<2>());
   station_ = goal;
   phase_ = UsvPhase::Transit;
   ++path_version_;

@@ -42,7 +42,7 @@ def test_the_check_itself_catches_ros_includes():
 
 
 def test_core_library_links_no_ros():
-    libs = glob.glob(os.path.join(REPO, "build", "ws*", "devel", "lib", "liboffshore_gnc_core.so"))
+    libs = glob.glob(os.path.join(REPO, "build", ".ws*", "devel", "lib", "liboffshore_gnc_core.so"))
     libs += [os.path.join(d, "liboffshore_gnc_core.so") for d in os.environ.get("LD_LIBRARY_PATH", "").split(":") if d]
     libs = [l for l in libs if os.path.exists(l)]
     assert libs, "liboffshore_gnc_core.so not built"

@@ -5,7 +5,7 @@ set -uo pipefail
 REPO="$(cd "$(dirname "$0")/../.." && pwd)"
 out="${TEST_RESULTS_DIR:?TEST_RESULTS_DIR not set}"
 secs="${CAN_FUZZ_SECONDS:-15}"
-work="${WS:-$REPO/build/ws}/can-fuzz"
+work="${WS:-$REPO/build/.ws}/can-fuzz"
 mkdir -p "$out" "$work"
 "$REPO/scripts/can-fuzz.sh" "$secs" "$work" > "$work/suite.log" 2>&1; rc=$?
 cases=""; fails=0

@@ -8,7 +8,7 @@
 # Env: TEST_RESULTS_DIR (JUnit XML out), WS (catkin workspace with the built test_can_vcan, can_decode).
 set -uo pipefail
 REPO="$(cd "$(dirname "$0")/../.." && pwd)"
-WS="${WS:-$REPO/build/ws}"
+WS="${WS:-$REPO/build/.ws}"
 out="${TEST_RESULTS_DIR:?TEST_RESULTS_DIR not set}"
 mkdir -p "$out"
 bin="$WS/devel/lib/offshore_gnc"

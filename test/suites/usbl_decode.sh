@@ -5,7 +5,7 @@
 set -uo pipefail
 REPO="$(cd "$(dirname "$0")/../.." && pwd)"
 out="${TEST_RESULTS_DIR:?TEST_RESULTS_DIR not set}"
-ws="${WS:-$REPO/build/ws}"
+ws="${WS:-$REPO/build/.ws}"
 work="$ws/usbl-decode"
 mkdir -p "$out" "$work"
 # shellcheck disable=SC1091

@@ -5,7 +5,7 @@ set -uo pipefail
 REPO="$(cd "$(dirname "$0")/../.." && pwd)"
 out="${TEST_RESULTS_DIR:?TEST_RESULTS_DIR not set}"
 secs="${USBL_FUZZ_SECONDS:-20}"
-work="${WS:-$REPO/build/ws}/usbl-fuzz"
+work="${WS:-$REPO/build/.ws}/usbl-fuzz"
 mkdir -p "$out" "$work"
 "$REPO/scripts/fuzz-usbl" "$secs" "$work" > "$work/suite.log" 2>&1; rc=$?
 execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/fuzz.log" 2>/dev/null | tail -n1)"

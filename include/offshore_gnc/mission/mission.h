@@ -109,16 +109,13 @@ class UsvMission {
   Counters counters_;
 };
 
-// Straight line from `from` to `to` with intermediate waypoints every `spacing` metres (both ends included,
-// the last leg possibly shorter). Degenerate input (not finite, spacing <= 0) gives an empty path.
-std::vector<Eigen::Vector2d> straightPath(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double spacing);
 
 // Station keeping at `p` expressed as a path guidance understands: guidance holds the end of a path, so a short
 // lead-in leg along the current heading ends at p (no turn is needed to "follow" it).
 std::vector<Eigen::Vector2d> holdPath(const Eigen::Vector2d& p, double heading, double lead_in = 2.0);
 
-// Lawnmower coverage of the rectangle [north_min, north_max] x [east_min, east_max] at one depth: legs along
-// north, `spacing` apart in east, starting at the south-west corner. Empty for a degenerate rectangle.
+// The AUV's search area as a north/east rectangle; coveragePath() lays guidance::lawnmower over it (legs along
+// north, `spacing` apart to the east, from the south-west corner). Empty for a degenerate rectangle.
 struct CoverageArea {
   double north_min = 0, north_max = 0, east_min = 0, east_max = 0, depth = 0, spacing = 5.0;
 };
