@@ -117,6 +117,9 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "target_error_m": target_error, "target_error_3d_m": target_error_3d,
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
         "min_clearance_m": clearance(usv_track, sc.get("obstacles", []) or []),
+        # where the USV really ended, against the true target (the stand-off is part of this distance)
+        "usv_final_distance_to_target_m": (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
+                                               for tt in targets_true) if usv_track and targets_true else float("nan")),
         "sim_time_s": sim_time, "wall_time_s": wall_time_s,
         "usv_final_phase": last_usv.phase if last_usv else None,
         "auv_final_phase": last_auv.phase if last_auv else None,
@@ -204,6 +207,7 @@ def _summary(out, m, scenario):
         "| detection time | %s | |" % _fmt(m["detection_time_s"], " s"),
         "| target localisation error | %s | |" % _fmt(m["target_error_m"], " m"),
         "| minimum clearance to obstacles | %s | |" % _fmt(m["min_clearance_m"], " m"),
+        "| USV final distance to the true target | %s | |" % _fmt(m["usv_final_distance_to_target_m"], " m"),
         "| simulated time | %s | |" % _fmt(m["sim_time_s"], " s"),
         "| wall time | %s | |" % _fmt(m["wall_time_s"], " s"),
         "", "Final phases: USV %s, AUV %s." % (m["usv_final_phase"], m["auv_final_phase"]), "",

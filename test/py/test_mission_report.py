@@ -64,6 +64,7 @@ def test_report_from_bags(tmp_path):
     assert m["usv_mae_m"] == pytest.approx(0.5)
     assert m["min_clearance_m"] == pytest.approx(2.5 - 0.5)
     assert m["target_error_m"] == pytest.approx(1.0)
+    assert m["usv_final_distance_to_target_m"] == pytest.approx(math.hypot(45.0 - 49.0, 3.0 - 0.5))
     assert m["auv_rmse_m"] is None  # no AUV bag: reported as unknown, not as zero
     assert m["sim_time_s"] == pytest.approx(49.0)
     for f in ("metrics.json", "summary.md", "map.png", "cross_track.png"):
