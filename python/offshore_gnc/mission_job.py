@@ -5,14 +5,18 @@ Starts two real masters, the USV and AUV stacks (simulators, perception, guidanc
 rosbag recording) from launch/usv.launch and launch/auv.launch, follows both missions' progress (phase,
 simulated time, distance to go) until the USV holds position at the target (success), the AUV ends its
 search without a target, a stack dies, or the simulated-time limit passes; then writes the report folder
-(metrics.json, summary.md, map.png, cross_track.png, the rosbags, logs) and prints where it is.
-Exit status 0 only if the mission ended as the scenario expects.
+(metrics.json, summary.md, map.png, cross_track.png, the rosbags, logs, rviz_usv.png with --screenshot) and
+prints where it is. Exit status 0 only if the mission ended as the scenario expects.
+
+When one vehicle's stack dies (or is killed with --kill, to test exactly that), the job keeps watching the other
+one for --after-kill simulated seconds (or until it finishes) so that the report says what it did meanwhile.
 """
 import argparse
 import datetime
 import json
 import os
 import select
+import shutil
 import subprocess
 import sys
 import time
@@ -21,6 +25,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 from offshore_gnc import report, scenario_check  # noqa: E402
 from offshore_gnc.testing import MasterSet  # noqa: E402
+from offshore_gnc.testing.masters import kill_tree  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 
@@ -30,23 +35,44 @@ def parse_args(argv=None):
     ap.add_argument("--scenario", default=os.path.join(REPO, "config", "scenarios", "pyhajarvi.yaml"))
     ap.add_argument("--rviz", action="store_true", help="open rviz on the USV master to watch live")
     ap.add_argument("--out", default=None, help="report folder (default: reports/<scenario>-<time>)")
-    ap.add_argument("--rate", type=float, default=20.0, help="simulated seconds per wall second (default 20)")
+    ap.add_argument("--rate", type=float, default=20.0,
+                    help="at most this many simulated seconds per wall second (default 20; 0 = as fast as possible)")
+    ap.add_argument("--free-running", action="store_true",
+                    help="each simulator keeps its own clock at --rate (no shared lockstep time)")
     ap.add_argument("--max-sim-time", type=float, default=None, help="give up after this simulated time [s]")
     ap.add_argument("--auv-model", default="girona500", choices=["girona500", "acolor"])
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
-    return ap.parse_args(argv)
+    ap.add_argument("--screenshot", action="store_true",
+                    help="rviz (USV configuration) under Xvfb during the mission: rviz_usv.png in the report")
+    ap.add_argument("--kill", metavar="VEHICLE@SIM_S", default=None,
+                    help="fault injection: SIGKILL one vehicle's whole stack at this simulated time, e.g. auv@120")
+    ap.add_argument("--after-kill", type=float, default=60.0,
+                    help="simulated seconds to keep watching the surviving vehicle after a stack died (default 60)")
+    a = ap.parse_args(argv)
+    if a.kill:
+        v, _, t = a.kill.partition("@")
+        try:
+            a.kill = (v, float(t))
+        except ValueError:
+            ap.error("--kill wants VEHICLE@SIM_S, e.g. auv@120")
+        if v not in ("usv", "auv"):
+            ap.error("--kill: the vehicle is usv or auv")
+    return a
 
 
 class Monitor:
-    """Reads the JSON status lines of one vehicle's status_monitor.py."""
+    """One vehicle's status_monitor.py: its JSON status lines, and its simulator's clock in lockstep."""
 
-    def __init__(self, master, vehicle):
+    def __init__(self, master, vehicle, lockstep):
         self.vehicle = vehicle
-        self.proc = subprocess.Popen([sys.executable, os.path.join(HERE, "status_monitor.py"), vehicle],
-                                     env=master.env(), stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                                     start_new_session=True, text=True, bufsize=1)
+        cmd = [sys.executable, os.path.join(HERE, "status_monitor.py"), vehicle]
+        if lockstep:
+            cmd += ["--step-topic", "/%s_sim/sim/step" % vehicle]
+        self.proc = subprocess.Popen(cmd, env=master.env(), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     stderr=subprocess.DEVNULL, start_new_session=True, text=True, bufsize=1)
         master.procs.append(self.proc)
         self.last = {"phase": "STARTING", "sim_time": 0.0}
+        self.reached = 0.0
 
     def poll(self):
         while select.select([self.proc.stdout], [], [], 0)[0]:
@@ -56,8 +82,69 @@ class Monitor:
             try:
                 self.last = json.loads(line)
             except ValueError:
-                pass
+                continue
+            self.reached = self.last.get("reached", self.reached)
         return self.last
+
+    def advance(self, t):
+        """Let the simulator run up to simulated time t (lockstep)."""
+        try:
+            self.proc.stdin.write("%.3f\n" % t)
+        except (BrokenPipeError, ValueError):
+            pass
+
+
+class SharedClock:
+    """Co-simulation time: both simulators run in lockstep to the same simulated times, granted in rounds of
+    CHUNK seconds with at most two rounds outstanding, so neither gets more than 2 CHUNK ahead of the other.
+    Each simulator spreads its steps at --rate; the slower one sets the pace (the USV's LiDAR costs more CPU
+    than the AUV's sonar: free-running, their clocks drifted apart by minutes over one mission)."""
+    CHUNK = 0.5
+
+    def __init__(self, monitors):
+        self.monitors, self.target = monitors, 0.0
+
+    def tick(self, alive):
+        live = [self.monitors[v] for v in alive]
+        while live and all(m.reached >= self.target - self.CHUNK - 1e-6 for m in live):
+            self.target += self.CHUNK
+            for m in live:
+                m.advance(self.target)
+
+
+class Screenshots:
+    """rviz with the USV configuration under Xvfb, shot every few wall seconds once the USV is under way; keeps
+    the shot where the planned path, the target from the AUV and the safety boxes are all drawn (the last such)."""
+    COLOURS = {"planned_path": (25, 255, 0), "target": (255, 0, 255), "safety_box": (255, 0, 0)}
+    MIN_PIXELS = 30
+
+    def __init__(self, master, out):
+        from offshore_gnc.testing.screenshot import RvizScreen
+        self.out, self.best, self.best_score, self.last_t = out, None, -1.0, 0.0
+        master.wait_for_param("/use_sim_time", 60.0)  # rviz reads it once: without it, it shows wall time
+        self.screen = RvizScreen(master, os.path.join(REPO, "config", "rviz", "usv.rviz")).__enter__()
+
+    def maybe_shoot(self, usv_phase):
+        if usv_phase not in ("TRANSIT", "ARRIVED") or time.time() - self.last_t < 2.0:
+            return
+        from offshore_gnc.testing.screenshot import count_colour
+        self.last_t = time.time()
+        tmp = os.path.join(self.out, "rviz_usv.tmp.png")
+        try:
+            self.screen.shot(tmp)
+        except (RuntimeError, subprocess.SubprocessError) as e:
+            print("[mission] screenshot failed: %s" % e, flush=True)
+            return
+        px = {k: count_colour(tmp, rgb) for k, rgb in self.COLOURS.items()}
+        # all colours present beats any partial picture; among complete ones the latest (most path followed)
+        score = min(px.values()) >= self.MIN_PIXELS and 1e9 + self.last_t or sum(min(v, 500) for v in px.values())
+        if score >= self.best_score:
+            self.best, self.best_score = px, score
+            os.replace(tmp, os.path.join(self.out, "rviz_usv.png"))
+
+    def close(self):
+        self.screen.__exit__(None, None, None)
+        return self.best
 
 
 def fmt_progress(u, a):
@@ -66,6 +153,21 @@ def fmt_progress(u, a):
         dist = " %.1f m to go" % d if isinstance(d, (int, float)) and d == d and d >= 0 else ""
         return "%s%s" % (s.get("phase", "?"), dist)
     return "[sim %7.1f s] AUV %-14s | USV %s" % (max(u.get("sim_time", 0), a.get("sim_time", 0)), one(a), one(u))
+
+
+def after_death(died, launches, status, watch_s):
+    """The outcome once a stack has died, or None while the survivor is still being watched."""
+    gone = ", ".join("the %s stack died at sim %.1f s (exit %s)" % (v, t, launches[v].returncode)
+                     for v, t in sorted(died.items()))
+    survivors = [v for v in ("usv", "auv") if v not in died]
+    if not survivors:
+        return {"success": False, "reason": gone, "died": died}
+    s = status[survivors[0]]
+    if not s.get("finished") and s.get("sim_time", 0.0) - min(died.values()) < watch_s:
+        return None
+    return {"success": False, "died": died,
+            "reason": "%s; the %s went on: phase %s (%s)" % (gone, survivors[0].upper(), s.get("phase"),
+                                                             s.get("detail", ""))}
 
 
 def run(a):
@@ -80,30 +182,45 @@ def run(a):
     t0 = time.time()
     outcome = {"success": False, "reason": "not started"}
     with MasterSet(["usv", "auv"], log_dir=os.path.join(out, "logs")) as ms:
-        common = {"sim": "true", "scenario": os.path.abspath(a.scenario), "rate": str(a.rate), "record": "true"}
+        lockstep = not a.free_running
+        common = {"sim": "true", "scenario": os.path.abspath(a.scenario), "rate": str(a.rate), "record": "true",
+                  "lockstep": str(lockstep).lower()}
         launches = {
             "usv": ms["usv"].roslaunch(os.path.join(REPO, "launch", "usv.launch"), dict(
                 common, bag=os.path.join(out, "usv.bag"), rviz=str(a.rviz).lower())),
             "auv": ms["auv"].roslaunch(os.path.join(REPO, "launch", "auv.launch"), dict(
                 common, bag=os.path.join(out, "auv.bag"), vehicle_model=a.auv_model)),
         }
-        mons = {v: Monitor(ms[v], v) for v in ("usv", "auv")}
+        mons = {v: Monitor(ms[v], v, lockstep) for v in ("usv", "auv")}
+        clock = SharedClock(mons) if lockstep else None
+        shots = Screenshots(ms["usv"], out) if a.screenshot else None
         print("[mission] scenario %s, report folder %s" % (a.scenario, out), flush=True)
         last_print = 0.0
+        died = {}  # vehicle -> simulated time when its stack was found dead
         while True:
-            time.sleep(0.2)
+            select.select([m.proc.stdout for m in mons.values()], [], [], 0.05)
             u, av = mons["usv"].poll(), mons["auv"].poll()
-            dead = [v for v, p in launches.items() if p.poll() is not None]
+            if clock:
+                clock.tick([v for v in mons if v not in died])
             sim_t = max(u.get("sim_time", 0.0), av.get("sim_time", 0.0))
+            if a.kill and a.kill[0] not in died and sim_t >= a.kill[1]:
+                print("[mission] fault injection: killing the %s stack at sim %.1f s" % (a.kill[0], sim_t), flush=True)
+                kill_tree(launches[a.kill[0]].pid)
+                launches[a.kill[0]].wait()
+            for v, p in launches.items():
+                if v not in died and p.poll() is not None:
+                    died[v] = sim_t
+                    print("[mission] the %s stack died at sim %.1f s (exit %s)" % (v, sim_t, p.returncode), flush=True)
+            if shots:
+                shots.maybe_shoot(u.get("phase"))
             if not a.quiet and time.time() - last_print >= 2.0:
                 print(fmt_progress(u, av), flush=True)
                 last_print = time.time()
-            if dead:
-                outcome = {"success": False, "reason": "the %s stack died (exit %s); see logs/" % (
-                    ",".join(dead), ",".join(str(launches[v].returncode) for v in dead))}
-                if "auv" in dead and "usv" not in dead:
-                    outcome["reason"] += "; the USV kept station keeping (%s)" % u.get("phase")
-                break
+            if died:
+                outcome = after_death(died, launches, {"usv": u, "auv": av}, a.after_kill)
+                if outcome:
+                    break
+                continue
             if expect == "target_reached" and u.get("finished") and u.get("success"):
                 outcome = {"success": True, "reason": "USV holds position at the target: " + u.get("detail", "")}
                 break
@@ -118,10 +235,25 @@ def run(a):
             if time.time() - t0 > 30 and sim_t == 0.0:
                 outcome = {"success": False, "reason": "no simulated time after 30 s: simulators not running"}
                 break
+        if shots:
+            outcome["rviz_pixels"] = shots.close()
         outcome["sim_time_s"] = round(sim_t, 1)
         print(fmt_progress(u, av), flush=True)
         # MasterSet's exit stops roslaunch with SIGINT: rosbag closes its bags cleanly.
     wall = time.time() - t0
+    for v in ("usv", "auv"):  # a killed rosbag leaves an unindexed .active file: recover it, lose no data
+        bag = os.path.join(out, v + ".bag")
+        if not os.path.exists(bag) and os.path.exists(bag + ".active"):
+            fixed = os.path.join(out, "reindexed")
+            os.makedirs(fixed, exist_ok=True)
+            r = subprocess.run(["rosbag", "reindex", "-q", "--output-dir", fixed, bag + ".active"],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            if r.returncode == 0 and os.path.exists(os.path.join(fixed, v + ".bag.active")):
+                shutil.move(os.path.join(fixed, v + ".bag.active"), bag)
+                os.remove(bag + ".active")
+            else:
+                print("[mission] could not reindex %s.active: %s" % (bag, r.stderr.strip()[-300:]), flush=True)
+            shutil.rmtree(fixed, ignore_errors=True)
     m = report.build(os.path.join(out, "usv.bag"), os.path.join(out, "auv.bag"), a.scenario, out,
                      wall_time_s=round(wall, 2), outcome=outcome)
     print("[mission] %s: %s" % ("SUCCESS" if m["success"] else "FAILED", outcome["reason"]))

@@ -11,6 +11,7 @@ import argparse
 import json
 import math
 import os
+import subprocess
 
 import yaml
 
@@ -18,19 +19,19 @@ THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4
     "usv_rmse_m": 1.5482, "usv_sd_m": 0.7764, "usv_mae_m": 1.3397, "auv_rmse_m": 0.23,
 }
 
-MODE_FOLLOW_PATH = 1
+MODE_FOLLOW_PATH = 1  # GuidanceStatus.MODE_FOLLOW_PATH (for the plots; the metrics tool filters the same)
 
 
-def cross_track_stats(errors):
-    """RMSE, SD and MAE of a list of cross-track errors [m] (thesis Tables 4.4, 5.1); NaN when empty."""
-    e = [x for x in errors if math.isfinite(x)]
-    if not e:
+def tracking_metrics(path, selector=None):
+    """Cross-track RMSE, SD and MAE (thesis Tables 4.4, 5.1) of a bag's GuidanceStatus topic in path-following
+    mode, or of a CSV column, from the C++ tool `tracking_metrics` (the one implementation; the tracking bench
+    uses the same code). NaN figures and n = 0 when there is nothing to measure."""
+    cmd = ["rosrun", "offshore_gnc", "tracking_metrics", path] + ([selector] if selector else [])
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) if os.path.exists(path) else None
+    if r is None or r.returncode != 0:
         return {"rmse": float("nan"), "sd": float("nan"), "mae": float("nan"), "n": 0}
-    n = len(e)
-    mean = sum(e) / n
-    return {"rmse": math.sqrt(sum(x * x for x in e) / n),
-            "sd": math.sqrt(sum((x - mean) ** 2 for x in e) / n),
-            "mae": sum(abs(x) for x in e) / n, "n": n}
+    d = json.loads(r.stdout.strip().splitlines()[-1])
+    return {"rmse": d["rmse_m"], "sd": d["sd_m"], "mae": d["mae_m"], "n": d["samples"]}
 
 
 def read_bag(path, topics):
@@ -72,6 +73,14 @@ def clearance(track, obstacles):
     return best
 
 
+def _drift_after(track, t0):
+    """Largest horizontal distance of a track from where it was at time t0 [m] (NaN without data after t0)."""
+    after = [p for p in track if p[0] >= t0]
+    if not after:
+        return float("nan")
+    return max(math.hypot(n - after[0][1], e - after[0][2]) for _, n, e, _ in after)
+
+
 def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=None):
     os.makedirs(out, exist_ok=True)
     sc = yaml.safe_load(open(scenario)) if scenario else {}
@@ -85,7 +94,8 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     auv_track = odom_track_ned(a["/auv/ground_truth/odom"])
     usv_xte = [(t, m.cross_track_error) for t, m in u["/usv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
     auv_xte = [(t, m.cross_track_error) for t, m in a["/auv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
-    us, au = cross_track_stats([e for _, e in usv_xte]), cross_track_stats([e for _, e in auv_xte])
+    us = tracking_metrics(usv_bag or "", "/usv/guidance/status")
+    au = tracking_metrics(auv_bag or "", "/auv/guidance/status")
 
     targets_true = sc.get("targets", []) or []
     detected = None
@@ -108,6 +118,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     if outcome and "sim_time_s" in outcome:  # when the job decided the outcome, not when the bags closed
         sim_time = outcome["sim_time_s"]
     success = bool(outcome["success"]) if outcome else bool(last_usv and last_usv.success)
+    died = (outcome or {}).get("died") or {}
 
     metrics = {
         "success": success,
@@ -121,11 +132,17 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "usv_final_distance_to_target_m": (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
                                                for tt in targets_true) if usv_track and targets_true else float("nan")),
         "sim_time_s": sim_time, "wall_time_s": wall_time_s,
+        "stacks_died": {v: round(t, 1) for v, t in died.items()},
+        # how far the surviving vehicle moved after the other's stack died (safe behaviour = holding position)
+        "survivor_drift_m": _drift_after(usv_track if "auv" in died else auv_track, min(died.values()))
+        if len(died) == 1 else float("nan"),
         "usv_final_phase": last_usv.phase if last_usv else None,
         "auv_final_phase": last_auv.phase if last_auv else None,
         "thesis": THESIS,
     }
     # JSON has no NaN: write null for figures that could not be computed
+    if outcome and outcome.get("rviz_pixels") is not None:
+        metrics["rviz_pixels"] = outcome["rviz_pixels"]
     clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in metrics.items()}
     with open(os.path.join(out, "metrics.json"), "w") as f:
         json.dump(clean, f, indent=2)
@@ -211,8 +228,13 @@ def _summary(out, m, scenario):
         "| simulated time | %s | |" % _fmt(m["sim_time_s"], " s"),
         "| wall time | %s | |" % _fmt(m["wall_time_s"], " s"),
         "", "Final phases: USV %s, AUV %s." % (m["usv_final_phase"], m["auv_final_phase"]), "",
-        "![map](map.png)", "", "![cross-track error](cross_track.png)", "",
     ]
+    if m["stacks_died"]:
+        lines += ["Stacks that died: %s (simulated time [s]); the other vehicle moved at most %s afterwards." % (
+            ", ".join("%s at %s" % kv for kv in m["stacks_died"].items()), _fmt(m["survivor_drift_m"], " m")), ""]
+    lines += ["![map](map.png)", "", "![cross-track error](cross_track.png)", ""]
+    if "rviz_pixels" in m:
+        lines += ["![rviz, USV configuration](rviz_usv.png)", ""]
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines))
 

@@ -19,6 +19,7 @@
 #include "offshore_gnc/guidance/los.h"
 #include "offshore_gnc/guidance/sbb.h"
 #include "offshore_gnc/ros/diagnostics.h"
+#include "offshore_gnc/ros/markers.h"
 #include "offshore_gnc/ros/params.h"
 #include "ros_convert.h"
 
@@ -62,7 +63,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     status_pub_ = nh.advertise<GuidanceStatus>("guidance/status", 10);
     boxes_pub_ = nh.advertise<SafetyBoxArray>("guidance/safety_boxes", 1, true);
     planned_pub_ = nh.advertise<nav_msgs::Path>("guidance/planned_path", 1, true);
-    markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+    markers_.advertise(nh, "markers", "sbb", true);
     path_sub_ = nh.subscribe("guidance/path", 1, &GuidanceNodelet::onPath, this);
     odom_sub_ = nh.subscribe("odom", 10, &GuidanceNodelet::onOdom, this);
     if (sbb_on_) obstacles_sub_ = nh.subscribe("obstacles", 1, &GuidanceNodelet::onObstacles, this);
@@ -237,12 +238,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     SafetyBoxArray a;
     a.header.stamp = ros::Time::now();
     a.header.frame_id = frame_;
-    visualization_msgs::MarkerArray ma;
-    visualization_msgs::Marker clear;
-    clear.action = visualization_msgs::Marker::DELETEALL;
-    clear.ns = "sbb";
-    ma.markers.push_back(clear);
-    int id = 0;
+    std::vector<visualization_msgs::Marker> ma;
     for (const auto& b : plan.boxes) {
       SafetyBox m;
       m.header = a.header;
@@ -256,9 +252,6 @@ class GuidanceNodelet : public nodelet::Nodelet {
       m.side = static_cast<int8_t>(b.side);
       a.boxes.push_back(m);
       visualization_msgs::Marker mk;
-      mk.header = a.header;
-      mk.ns = "sbb";
-      mk.id = id++;
       mk.type = visualization_msgs::Marker::LINE_STRIP;
       mk.scale.x = 0.3;
       mk.color.a = 1.0;
@@ -266,10 +259,10 @@ class GuidanceNodelet : public nodelet::Nodelet {
       mk.color.g = b.cuts_path ? 0.0 : 0.5;
       mk.pose.orientation.w = 1.0;
       for (int i = 0; i <= 4; ++i) mk.points.push_back(m.corners[i % 4]);
-      ma.markers.push_back(mk);
+      ma.push_back(mk);
     }
     boxes_pub_.publish(a);
-    markers_pub_.publish(ma);
+    markers_.publish(std::move(ma), a.header);
   }
 
   std::string vehicle_, frame_;
@@ -287,7 +280,8 @@ class GuidanceNodelet : public nodelet::Nodelet {
   boost::recursive_mutex reconf_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<GuidanceConfig>> reconfigure_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
-  ros::Publisher status_pub_, boxes_pub_, planned_pub_, markers_pub_;
+  ros::Publisher status_pub_, boxes_pub_, planned_pub_;
+  ros_util::NamespaceMarkers markers_;
   ros::Subscriber path_sub_, odom_sub_, obstacles_sub_;
   ros::Timer timer_;
 };

@@ -3,6 +3,7 @@
 #include <nav_msgs/Path.h>
 #include <offshore_gnc/MissionStatus.h>
 #include <ros/ros.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <Eigen/Core>
 #include <limits>
@@ -26,6 +27,28 @@ inline nav_msgs::Path toPath(const std::vector<Eigen::Vector3d>& pts, const ros:
     p.poses.push_back(ps);
   }
   return p;
+}
+
+// The target as this vehicle knows it (a magenta sphere in map_ned), for rviz: on the USV it is the one the AUV
+// sent across, so a user sees where the USV is heading and how it compares with the LiDAR picture.
+inline visualization_msgs::MarkerArray targetMarker(double north, double east, double depth, const ros::Time& stamp) {
+  visualization_msgs::Marker m;
+  m.header.stamp = stamp;
+  m.header.frame_id = "map_ned";
+  m.ns = "mission_target";
+  m.type = visualization_msgs::Marker::SPHERE;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.position.x = north;
+  m.pose.position.y = east;
+  m.pose.position.z = depth;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = 2.0;
+  m.color.r = 1.0f;
+  m.color.b = 1.0f;
+  m.color.a = 1.0f;
+  visualization_msgs::MarkerArray a;
+  a.markers.push_back(m);
+  return a;
 }
 
 inline MissionStatus status(const std::string& vehicle, const std::string& phase, const std::string& detail,

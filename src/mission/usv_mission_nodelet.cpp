@@ -38,6 +38,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     }
     path_pub_ = nh.advertise<nav_msgs::Path>("guidance/path", 1, true);
     status_pub_ = nh.advertise<MissionStatus>("mission/status", 10, true);
+    markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("mission/markers", 1, true);
     target_sub_ = nh.subscribe("/target", 10, &UsvMissionNodelet::onTarget, this);
     odom_sub_ = nh.subscribe("odom", 10, &UsvMissionNodelet::onOdom, this);
     guidance_sub_ = nh.subscribe("guidance/status", 10, &UsvMissionNodelet::onGuidance, this);
@@ -77,6 +78,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     const int before = mission_->pathVersion();
     const bool transit = mission_->onTarget({t->origin.x, t->origin.y}, ros::Time::now().toSec());
     if (mission_->pathVersion() != before) {
+      markers_pub_.publish(mission_ros::targetMarker(t->origin.x, t->origin.y, t->origin.z, ros::Time::now()));
       publishPath(mission_->path().empty() ? mission::holdPath(*mission_->stationPoint(), 0.0) : mission_->path());
       following_ = false;
       NODELET_INFO("target received: %s", mission_->detail().c_str());
@@ -126,7 +128,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
   bool following_ = false, holding_published_ = false;
   ros::Time last_manual_;
   std::unique_ptr<mission::UsvMission> mission_;
-  ros::Publisher path_pub_, status_pub_;
+  ros::Publisher path_pub_, status_pub_, markers_pub_;
   ros::Subscriber target_sub_, odom_sub_, guidance_sub_, manual_sub_, link_sub_;
   ros::Timer timer_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;

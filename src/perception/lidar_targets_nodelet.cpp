@@ -12,6 +12,7 @@
 
 #include "offshore_gnc/TargetArray.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/markers.h"
 #include "ros_perception.h"
 
 namespace offshore_gnc {
@@ -42,7 +43,7 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
     tf_ = std::make_unique<tf2_ros::Buffer>();
     listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_, nh);
     targets_pub_ = nh.advertise<offshore_gnc::TargetArray>("obstacles", 5);
-    markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("markers", 5);
+    markers_.advertise(nh, "markers", "lidar_targets");
     sub_ = nh.subscribe("lidar/points", 2, &LidarTargetsNodelet::onCloud, this);
     diag_ = std::make_unique<perception_ros::Diagnostics>(
         nh, pnh, getName(), extractor_->counters(), [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
@@ -81,7 +82,7 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
       out.targets.push_back(t);
     }
     last_targets_ = out.targets.size();
-    markers_pub_.publish(perception_ros::targetMarkers(out.targets, out.header, "lidar_targets", 1.0f, 0.5f, 0.0f));
+    markers_.publish(perception_ros::targetMarkers(out.targets, 1.0f, 0.5f, 0.0f), out.header);
     targets_pub_.publish(out);
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
@@ -91,7 +92,8 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
   std::unique_ptr<perception::LidarTargetExtractor> extractor_;
   std::unique_ptr<tf2_ros::Buffer> tf_;
   std::unique_ptr<tf2_ros::TransformListener> listener_;
-  ros::Publisher targets_pub_, markers_pub_;
+  ros::Publisher targets_pub_;
+  ros_util::NamespaceMarkers markers_;
   ros::Subscriber sub_;
   std::unique_ptr<perception_ros::Diagnostics> diag_;
   std::atomic<std::uint64_t> frames_{0}, last_targets_{0};

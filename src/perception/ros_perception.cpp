@@ -121,23 +121,12 @@ offshore_gnc::Target toTarget(const perception::TargetGeometry& g, const Eigen::
   return t;
 }
 
-visualization_msgs::MarkerArray targetMarkers(const std::vector<offshore_gnc::Target>& targets,
-                                              const std_msgs::Header& header, const std::string& ns, float r,
-                                              float g, float b) {
-  visualization_msgs::MarkerArray a;
-  visualization_msgs::Marker clear;
-  clear.header = header;
-  clear.ns = ns;
-  clear.action = visualization_msgs::Marker::DELETEALL;
-  a.markers.push_back(clear);
-  int id = 0;
+std::vector<visualization_msgs::Marker> targetMarkers(const std::vector<offshore_gnc::Target>& targets, float r,
+                                                    float g, float b) {
+  std::vector<visualization_msgs::Marker> a;
   for (const auto& t : targets) {
     visualization_msgs::Marker m;
-    m.header = header;
-    m.ns = ns;
-    m.id = id++;
     m.type = visualization_msgs::Marker::CYLINDER;
-    m.action = visualization_msgs::Marker::ADD;
     m.pose.position = t.origin;
     m.pose.orientation.w = 1.0;
     const double d = std::max({t.length, t.width, 0.3});
@@ -147,9 +136,20 @@ visualization_msgs::MarkerArray targetMarkers(const std::vector<offshore_gnc::Ta
     m.color.g = g;
     m.color.b = b;
     m.color.a = 0.8f;
-    a.markers.push_back(m);
+    a.push_back(m);
   }
   return a;
+}
+
+void SonarFeed::readParams(const ros_util::ParamReader& p) {
+  extractor = std::make_unique<perception::SonarTargetExtractor>(readSonarConfig(p));
+  target_frame = p.text("target_frame", "map_ned");
+  tf_timeout = p.number("tf_timeout", 0.1, 0.0, 10.0);
+}
+
+void SonarFeed::connect(ros::NodeHandle& nh) {
+  tf = std::make_unique<tf2_ros::Buffer>();
+  listener = std::make_unique<tf2_ros::TransformListener>(*tf, nh);
 }
 
 Diagnostics::Diagnostics(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::string& name,

@@ -7,6 +7,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <functional>
@@ -41,6 +42,21 @@ BeamFed feedBeam(perception::SonarTargetExtractor& ex, const offshore_gnc::Sonar
 // Sonar detection parameters, the same names and defaults for the sonar targets and wall detection nodelets.
 perception::SonarConfig readSonarConfig(const ros_util::ParamReader& p);
 
+// What the sonar targets and wall detection nodelets share: the sonar parameters, a tf listener for the pose
+// of every beam, and the sweep extractor the beams feed.
+struct SonarFeed {
+  void readParams(const ros_util::ParamReader& p);  // readSonarConfig + target_frame, tf_timeout; throws ConfigError
+  void connect(ros::NodeHandle& nh);                 // tf buffer and listener
+  BeamFed feed(const offshore_gnc::SonarBeam& msg, const std::string& who) {
+    return feedBeam(*extractor, msg, *tf, target_frame, tf_timeout, who);
+  }
+  std::unique_ptr<perception::SonarTargetExtractor> extractor;
+  std::unique_ptr<tf2_ros::Buffer> tf;
+  std::unique_ptr<tf2_ros::TransformListener> listener;
+  std::string target_frame = "map_ned";
+  double tf_timeout = 0.1;
+};
+
 geometry_msgs::Point toPoint(const Eigen::Vector3d& v);
 
 // Target message from core geometry given in the sensor frame (or already in the target frame with
@@ -48,10 +64,9 @@ geometry_msgs::Point toPoint(const Eigen::Vector3d& v);
 offshore_gnc::Target toTarget(const perception::TargetGeometry& g, const Eigen::Isometry3d& to_target,
                               std::uint8_t source, double bearing_cw);
 
-// One cylinder per target at its origin, sized by its extent, after a DELETEALL of the namespace.
-visualization_msgs::MarkerArray targetMarkers(const std::vector<offshore_gnc::Target>& targets,
-                                              const std_msgs::Header& header, const std::string& ns,
-                                              float r, float g, float b);
+// One cylinder per target at its origin, sized by its extent (for ros_util::NamespaceMarkers::publish).
+std::vector<visualization_msgs::Marker> targetMarkers(const std::vector<offshore_gnc::Target>& targets, float r,
+                                                    float g, float b);
 
 // diagnostic_updater with the core's counters, updated once a second; `extra` adds module figures.
 class Diagnostics {

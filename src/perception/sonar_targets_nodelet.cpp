@@ -17,6 +17,7 @@
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/perception/sonar_image.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/markers.h"
 #include "ros_perception.h"
 
 namespace offshore_gnc {
@@ -27,9 +28,7 @@ class SonarTargetsNodelet : public nodelet::Nodelet {
     ros::NodeHandle& pnh = getPrivateNodeHandle();
     ros_util::ParamReader p(pnh);
     try {
-      extractor_ = std::make_unique<perception::SonarTargetExtractor>(perception_ros::readSonarConfig(p));
-      target_frame_ = p.text("target_frame", "map_ned");
-      tf_timeout_ = p.number("tf_timeout", 0.1, 0.0, 10.0);
+      sonar_.readParams(p);
       image_ = std::make_unique<perception::SonarImage>(p.number("image_range", 30.0, 0.1, 1e3),
                                                         p.integer("image_radius_px", 250, 8, 4096));
       image_every_ = p.integer("image_every_beams", 20, 1, 100000);
@@ -37,15 +36,14 @@ class SonarTargetsNodelet : public nodelet::Nodelet {
       NODELET_FATAL("%s", e.what());
       throw;
     }
-    tf_ = std::make_unique<tf2_ros::Buffer>();
-    listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_, nh);
+    sonar_.connect(nh);
     targets_pub_ = nh.advertise<offshore_gnc::TargetArray>("sonar/targets", 5);
     sweep_pub_ = nh.advertise<sensor_msgs::PointCloud2>("sonar/sweep", 2);
     image_pub_ = nh.advertise<sensor_msgs::Image>("sonar/image", 2);
-    markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("markers", 5);
+    markers_.advertise(nh, "markers", "sonar_targets");
     sub_ = nh.subscribe("sonar/beam", 200, &SonarTargetsNodelet::onBeam, this);
     diag_ = std::make_unique<perception_ros::Diagnostics>(
-        nh, pnh, getName(), extractor_->counters(), [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+        nh, pnh, getName(), sonar_.extractor->counters(), [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
           s.add("beams", beams_.load());
           s.add("sweeps", sweeps_.load());
           s.add("last_targets", last_targets_.load());
@@ -54,13 +52,13 @@ class SonarTargetsNodelet : public nodelet::Nodelet {
 
   void onBeam(const offshore_gnc::SonarBeam::ConstPtr& msg) {
     ++beams_;
-    const auto fed = perception_ros::feedBeam(*extractor_, *msg, *tf_, target_frame_, tf_timeout_, getName());
+    const auto fed = sonar_.feed(*msg, getName());
     if (fed == perception_ros::BeamFed::Rejected) return;
     // The image is in the sonar frame: it needs no pose.
     image_->addBeam(msg->bearing, msg->beam_width, msg->range_resolution, msg->range_offset, msg->intensities.data(),
                     msg->intensities.size());
     if (beams_ % static_cast<std::uint64_t>(image_every_) == 0) publishImage(msg->header);
-    if (extractor_->sweepReady()) publishSweep(extractor_->takeSweep());
+    if (sonar_.extractor->sweepReady()) publishSweep(sonar_.extractor->takeSweep());
   }
 
   void publishImage(const std_msgs::Header& beam_header) {
@@ -72,20 +70,20 @@ class SonarTargetsNodelet : public nodelet::Nodelet {
     ++sweeps_;
     std_msgs::Header h;
     h.stamp = ros::Time(s.end_stamp);
-    h.frame_id = target_frame_;
+    h.frame_id = sonar_.target_frame;
     offshore_gnc::TargetArray out;
     out.header = h;
     for (const auto& st : s.targets) {
       auto t = perception_ros::toTarget(st.geometry, Eigen::Isometry3d::Identity(), offshore_gnc::Target::SOURCE_SONAR,
                                         st.geometry.bearing);
-      t.header.frame_id = target_frame_;
+      t.header.frame_id = sonar_.target_frame;
       t.header.stamp = ros::Time(st.stamp);
       t.depth = st.geometry.origin.z();  // map_ned: z is down
       out.targets.push_back(t);
     }
     last_targets_ = out.targets.size();
     targets_pub_.publish(out);
-    markers_pub_.publish(perception_ros::targetMarkers(out.targets, h, "sonar_targets", 1.0f, 0.0f, 0.0f));
+    markers_.publish(perception_ros::targetMarkers(out.targets, 1.0f, 0.0f, 0.0f), h);
 
     sensor_msgs::PointCloud2 cloud;
     cloud.header = h;
@@ -101,14 +99,11 @@ class SonarTargetsNodelet : public nodelet::Nodelet {
     sweep_pub_.publish(cloud);
   }
 
-  std::string target_frame_;
-  double tf_timeout_ = 0.1;
   int image_every_ = 20;
-  std::unique_ptr<perception::SonarTargetExtractor> extractor_;
+  perception_ros::SonarFeed sonar_;
   std::unique_ptr<perception::SonarImage> image_;
-  std::unique_ptr<tf2_ros::Buffer> tf_;
-  std::unique_ptr<tf2_ros::TransformListener> listener_;
-  ros::Publisher targets_pub_, sweep_pub_, image_pub_, markers_pub_;
+  ros::Publisher targets_pub_, sweep_pub_, image_pub_;
+  ros_util::NamespaceMarkers markers_;
   ros::Subscriber sub_;
   std::unique_ptr<perception_ros::Diagnostics> diag_;
   std::atomic<std::uint64_t> beams_{0}, sweeps_{0}, last_targets_{0};

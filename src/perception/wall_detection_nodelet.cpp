@@ -13,6 +13,7 @@
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/perception/wall_detection.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/markers.h"
 #include "ros_perception.h"
 
 namespace offshore_gnc {
@@ -23,7 +24,7 @@ class WallDetectionNodelet : public nodelet::Nodelet {
     ros::NodeHandle& pnh = getPrivateNodeHandle();
     ros_util::ParamReader p(pnh);
     try {
-      extractor_ = std::make_unique<perception::SonarTargetExtractor>(perception_ros::readSonarConfig(p));
+      sonar_.readParams(p);
       cfg_.split_distance = p.number("split_distance", 0.25, 1e-3, 100);
       cfg_.break_distance = p.number("break_distance", 1.5, 1e-3, 1e3);
       cfg_.merge_angle = deg2rad(p.number("merge_angle_deg", 6.0, 0.0, 45.0));
@@ -34,20 +35,17 @@ class WallDetectionNodelet : public nodelet::Nodelet {
       cfg_.offset = p.number("wall_distance", 2.0, 0.0, 1e3);
       cfg_.spacing = p.number("waypoint_spacing", 2.0, 1e-3, 1e3);
       cfg_.validate();
-      target_frame_ = p.text("target_frame", "map_ned");
       base_frame_ = p.text("base_frame", "auv/base_link");
-      tf_timeout_ = p.number("tf_timeout", 0.1, 0.0, 10.0);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
     }
-    tf_ = std::make_unique<tf2_ros::Buffer>();
-    listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_, nh);
+    sonar_.connect(nh);
     path_pub_ = nh.advertise<nav_msgs::Path>("sonar/wall_path", 2, true);
-    markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("markers", 5);
+    markers_.advertise(nh, "markers", "sonar_walls");
     sub_ = nh.subscribe("sonar/beam", 200, &WallDetectionNodelet::onBeam, this);
     diag_ = std::make_unique<perception_ros::Diagnostics>(
-        nh, pnh, getName(), extractor_->counters(), [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+        nh, pnh, getName(), sonar_.extractor->counters(), [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
           s.add("sweeps", sweeps_.load());
           s.add("last_walls", last_walls_.load());
           s.add("paths", paths_.load());
@@ -55,8 +53,8 @@ class WallDetectionNodelet : public nodelet::Nodelet {
   }
 
   void onBeam(const offshore_gnc::SonarBeam::ConstPtr& msg) {
-    perception_ros::feedBeam(*extractor_, *msg, *tf_, target_frame_, tf_timeout_, getName());
-    if (extractor_->sweepReady()) onSweep(extractor_->takeSweep());
+    sonar_.feed(*msg, getName());
+    if (sonar_.extractor->sweepReady()) onSweep(sonar_.extractor->takeSweep());
   }
 
   void onSweep(const perception::SonarSweep& s) {
@@ -69,8 +67,8 @@ class WallDetectionNodelet : public nodelet::Nodelet {
     const ros::Time stamp(s.end_stamp);
     Eigen::Isometry3d vehicle;
     std::string err;
-    if (!perception_ros::lookupPose(*tf_, target_frame_, base_frame_, stamp, tf_timeout_, vehicle, err)) {
-      extractor_->counters().increment("no_transform");
+    if (!perception_ros::lookupPose(*sonar_.tf, sonar_.target_frame, base_frame_, stamp, sonar_.tf_timeout, vehicle, err)) {
+      sonar_.extractor->counters().increment("no_transform");
       NODELET_WARN_THROTTLE(5.0, "no vehicle pose for the wall path: %s", err.c_str());
       return;
     }
@@ -80,7 +78,7 @@ class WallDetectionNodelet : public nodelet::Nodelet {
     const auto plan = perception::planWallPath(walls, vehicle.translation().head<2>(), yaw, cfg_);
     std_msgs::Header h;
     h.stamp = stamp;
-    h.frame_id = target_frame_;
+    h.frame_id = sonar_.target_frame;
     publishMarkers(walls, plan, h);
     if (!plan.ok) {
       NODELET_WARN_THROTTLE(10.0, "no wall of at least %.1f m in the last sweep (%zu points)", cfg_.min_length,
@@ -105,18 +103,9 @@ class WallDetectionNodelet : public nodelet::Nodelet {
 
   void publishMarkers(const std::vector<perception::WallSegment>& walls, const perception::WallPath& plan,
                       const std_msgs::Header& h) {
-    visualization_msgs::MarkerArray a;
-    visualization_msgs::Marker clear;
-    clear.header = h;
-    clear.ns = "sonar_walls";
-    clear.action = visualization_msgs::Marker::DELETEALL;
-    a.markers.push_back(clear);
+    std::vector<visualization_msgs::Marker> a;
     visualization_msgs::Marker lines;
-    lines.header = h;
-    lines.ns = "sonar_walls";
-    lines.id = 0;
     lines.type = visualization_msgs::Marker::LINE_LIST;
-    lines.pose.orientation.w = 1.0;
     lines.scale.x = 0.15;
     lines.color.g = 1.0f;
     lines.color.b = 1.0f;
@@ -125,27 +114,24 @@ class WallDetectionNodelet : public nodelet::Nodelet {
       lines.points.push_back(perception_ros::toPoint(Eigen::Vector3d(w.a.x(), w.a.y(), 0)));
       lines.points.push_back(perception_ros::toPoint(Eigen::Vector3d(w.b.x(), w.b.y(), 0)));
     }
-    if (!lines.points.empty()) a.markers.push_back(lines);
+    if (!lines.points.empty()) a.push_back(lines);
     if (plan.ok) {
       visualization_msgs::Marker wp = lines;
-      wp.id = 1;
       wp.type = visualization_msgs::Marker::SPHERE_LIST;
       wp.scale.x = wp.scale.y = wp.scale.z = 0.5;
       wp.color.r = 1.0f; wp.color.g = 1.0f; wp.color.b = 0.0f;
       wp.points = {perception_ros::toPoint(Eigen::Vector3d(plan.wp1.x(), plan.wp1.y(), 0)),
                    perception_ros::toPoint(Eigen::Vector3d(plan.wp2.x(), plan.wp2.y(), 0))};
-      a.markers.push_back(wp);
+      a.push_back(wp);
     }
-    markers_pub_.publish(a);
+    markers_.publish(std::move(a), h);
   }
 
   perception::WallConfig cfg_;
-  std::string target_frame_, base_frame_;
-  double tf_timeout_ = 0.1;
-  std::unique_ptr<perception::SonarTargetExtractor> extractor_;
-  std::unique_ptr<tf2_ros::Buffer> tf_;
-  std::unique_ptr<tf2_ros::TransformListener> listener_;
-  ros::Publisher path_pub_, markers_pub_;
+  std::string base_frame_;
+  perception_ros::SonarFeed sonar_;
+  ros::Publisher path_pub_;
+  ros_util::NamespaceMarkers markers_;
   ros::Subscriber sub_;
   std::unique_ptr<perception_ros::Diagnostics> diag_;
   std::atomic<std::uint64_t> sweeps_{0}, last_walls_{0}, paths_{0};

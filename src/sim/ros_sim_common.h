@@ -4,15 +4,18 @@
 #include <geometry_msgs/Quaternion.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_msgs/UInt32.h>
 #include <tf2/LinearMath/Quaternion.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -115,12 +118,20 @@ class SimRunner {
       : dt_(dt), rate_(rate), lockstep_(lockstep), step_(std::move(step)) {
     // latched: a node that starts while the simulation waits in lockstep still learns the current time
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
-    if (lockstep_)
-      step_sub_ = nh.subscribe<std_msgs::UInt32>("sim/step", 10, [this](const std_msgs::UInt32ConstPtr& m) {
+    if (lockstep_) {
+      // Steps arrive on a queue and thread of their own: in a nodelet manager a worker thread can sit in
+      // another nodelet's callback that waits for simulated time (a tf lookup with a timeout), and the
+      // clock's source must never queue behind it.
+      ros::NodeHandle step_nh(nh);
+      step_nh.setCallbackQueue(&step_queue_);
+      step_sub_ = step_nh.subscribe<std_msgs::UInt32>("sim/step", 100, [this](const std_msgs::UInt32ConstPtr& m) {
         std::lock_guard<std::mutex> l(wake_mutex_);
         pending_ += m->data;
         wake_.notify_all();
       });
+      step_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &step_queue_);
+      step_spinner_->start();
+    }
   }
   ~SimRunner() { stop(); }
   void start() { thread_ = std::thread([this] { run(); }); }
@@ -152,8 +163,15 @@ class SimRunner {
         t = step_();
       }
       publishClock(t);
-      if (rate_ > 0 && !lockstep_)
+      if (rate_ > 0 && !lockstep_) {
         std::this_thread::sleep_until(w0 + std::chrono::duration_cast<clk::duration>(std::chrono::duration<double>(t / rate_)));
+      } else if (rate_ > 0) {
+        // lockstep at a rate: granted steps are spread evenly (a burst would leave the control loop behind
+        // the simulated vehicle); time spent waiting for steps is not made up afterwards.
+        const auto step_wall = std::chrono::duration_cast<clk::duration>(std::chrono::duration<double>(dt_ / rate_));
+        paced_ = std::max(paced_ + step_wall, clk::now());
+        std::this_thread::sleep_until(paced_);
+      }
       const auto now = clk::now();
       const double wall = std::chrono::duration<double>(now - last_report).count();
       if (wall > 1.0) {
@@ -173,11 +191,14 @@ class SimRunner {
   bool lockstep_;
   std::function<double()> step_;
   ros::Publisher clock_pub_;
+  ros::CallbackQueue step_queue_;
   ros::Subscriber step_sub_;
+  std::unique_ptr<ros::AsyncSpinner> step_spinner_;
   std::thread thread_;
   std::mutex mutex_, wake_mutex_;
   std::condition_variable wake_;
   unsigned long pending_ = 0;
+  std::chrono::steady_clock::time_point paced_{};
   std::atomic<bool> running_{true};
   std::atomic<double> rtf_{0.0};
 };

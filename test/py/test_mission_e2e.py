@@ -1,5 +1,6 @@
 """The co-operative mission end to end, as the main job runs it: two real masters, both vehicle stacks in
-simulation, the relay between them; then the report's figures against stated bounds."""
+simulation on one shared (lockstep) simulated clock, the relay between them; then the report's figures against
+stated bounds, rviz's picture of the USV during the run, and what happens when one vehicle's stack dies."""
 import json
 import os
 import subprocess
@@ -11,26 +12,36 @@ JOB = os.path.join(REPO, "python", "offshore_gnc", "mission_job.py")
 # Bounds (docs/mission.md): the sonar's horizontal localisation within 2 m; the USV never touches the buoy.
 MAX_TARGET_ERROR_M = 2.0
 MIN_CLEARANCE_M = 0.0
+MIN_PIXELS = 30  # of each colour in rviz's 3-D view (the job's Screenshots.MIN_PIXELS)
+MAX_HOLD_DRIFT_M = 25.0  # the USV holding position after the AUV is gone (docs/mission.md)
 
 
-def run(scenario, out):
+def run(scenario, out, *extra):
     r = subprocess.run([sys.executable, JOB, "--scenario", os.path.join(REPO, "config", "scenarios", scenario),
-                        "--out", str(out), "--rate", "20", "--quiet"], stdout=subprocess.PIPE,
+                        "--out", str(out), "--rate", "20", "--quiet"] + list(extra), stdout=subprocess.PIPE,
                        stderr=subprocess.STDOUT, text=True, timeout=600)
     metrics = json.load(open(os.path.join(str(out), "metrics.json")))
     return r, metrics
 
 
 def test_default_mission_succeeds(tmp_path):
-    r, m = run("pyhajarvi.yaml", tmp_path / "default")
+    r, m = run("pyhajarvi.yaml", tmp_path / "default", "--screenshot")
     assert r.returncode == 0, r.stdout[-3000:]
     assert m["success"] is True
     assert m["usv_final_phase"] == "ARRIVED" and m["auv_final_phase"] == "TARGET_FOUND"
     assert m["target_error_m"] is not None and m["target_error_m"] < MAX_TARGET_ERROR_M, m
     assert m["min_clearance_m"] is not None and m["min_clearance_m"] > MIN_CLEARANCE_M, m
     assert m["usv_xte_samples"] > 0 and m["usv_rmse_m"] is not None
-    for f in ("map.png", "cross_track.png", "summary.md", "usv.bag", "auv.bag"):
+    for f in ("map.png", "cross_track.png", "summary.md", "usv.bag", "auv.bag", "rviz_usv.png"):
         assert os.path.getsize(os.path.join(str(tmp_path / "default"), f)) > 0, f
+    # one time base: the AUV's detection happened before the USV (which needed it) finished
+    assert 0 < m["detection_time_s"] < m["sim_time_s"], m
+    # rviz (USV configuration, under Xvfb) drew the planned path, the target from the AUV and the safety box
+    for what in ("planned_path", "target", "safety_box"):
+        assert m["rviz_pixels"][what] >= MIN_PIXELS, (what, m["rviz_pixels"])
+    if os.environ.get("OFFSHORE_GNC_SAVE_SCREENSHOT"):
+        import shutil
+        shutil.copy(os.path.join(str(tmp_path / "default"), "rviz_usv.png"), os.environ["OFFSHORE_GNC_SAVE_SCREENSHOT"])
 
 
 def test_no_target_scenario_ends_with_no_target(tmp_path):
@@ -39,3 +50,24 @@ def test_no_target_scenario_ends_with_no_target(tmp_path):
     assert m["auv_final_phase"] == "NO_TARGET"
     assert m["usv_final_phase"] in ("STATION_KEEPING", "PEER_LOST")
     assert m["target_error_m"] is None  # nothing was detected, nothing is reported as found
+
+
+def test_auv_stack_dies_usv_holds_position(tmp_path):
+    """Kill -9 of the AUV's whole stack while it searches: the USV never gets a target, notices the silence,
+    keeps holding position; the job says so, fails, and still recovers the AUV's unfinished bag."""
+    r, m = run("pyhajarvi.yaml", tmp_path / "kill", "--kill", "auv@100", "--after-kill", "120")
+    assert r.returncode == 1, r.stdout[-3000:]
+    assert m["success"] is False
+    assert list(m["stacks_died"]) == ["auv"] and "auv stack died" in m["outcome"], m["outcome"]
+    assert m["usv_final_phase"] == "PEER_LOST", m
+    assert m["survivor_drift_m"] is not None and m["survivor_drift_m"] < MAX_HOLD_DRIFT_M, m
+    assert m["auv_xte_samples"] > 0  # the killed recorder's bag was reindexed, not lost
+    assert m["target_error_m"] is None
+
+
+def test_usv_stack_dies_auv_goes_on(tmp_path):
+    r, m = run("pyhajarvi.yaml", tmp_path / "kill_usv", "--kill", "usv@100", "--after-kill", "60")
+    assert r.returncode == 1, r.stdout[-3000:]
+    assert list(m["stacks_died"]) == ["usv"], m
+    assert m["auv_final_phase"] in ("COVERAGE", "TARGET_FOUND"), m  # still searching, or found it meanwhile
+    assert m["usv_final_phase"] == "STATION_KEEPING", m  # read from the killed USV's recovered bag

@@ -12,14 +12,18 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 from offshore_gnc import report  # noqa: E402
 
 
-def test_cross_track_stats_hand_computed():
-    s = report.cross_track_stats([1.0, -1.0, 2.0, float("nan")])
+def test_tracking_metrics_hand_computed(tmp_path):
+    """The report's indicators come from the C++ tracking_metrics tool: hand-computed figures on a CSV whose
+    non-finite and non-following rows are skipped."""
+    csv = tmp_path / "xte.csv"
+    csv.write_text("t,mode,cross_track_error\n0,1,1.0\n1,1,-1.0\n2,1,2.0\n3,1,nan\n4,2,50.0\n")
+    s = report.tracking_metrics(str(csv))
     assert s["n"] == 3
-    assert s["rmse"] == pytest.approx(math.sqrt(6.0 / 3))
-    assert s["mae"] == pytest.approx(4.0 / 3)
+    assert s["rmse"] == pytest.approx(math.sqrt(6.0 / 3), abs=1e-4)
+    assert s["mae"] == pytest.approx(4.0 / 3, abs=1e-4)
     mean = 2.0 / 3
-    assert s["sd"] == pytest.approx(math.sqrt(((1 - mean) ** 2 + (-1 - mean) ** 2 + (2 - mean) ** 2) / 3))
-    assert math.isnan(report.cross_track_stats([])["rmse"])
+    assert s["sd"] == pytest.approx(math.sqrt(((1 - mean) ** 2 + (-1 - mean) ** 2 + (2 - mean) ** 2) / 3), abs=1e-4)
+    assert math.isnan(report.tracking_metrics(str(tmp_path / "missing.bag"))["rmse"])
 
 
 def test_report_from_bags(tmp_path):

@@ -7,26 +7,16 @@
 # vcan, in the VM only with CAN_E2E=1 (about 150 s under software emulation).
 # Env: TEST_RESULTS_DIR (JUnit XML out), WS (catkin workspace with the built test_can_vcan, can_decode).
 set -uo pipefail
-REPO="$(cd "$(dirname "$0")/../.." && pwd)"
-WS="${WS:-$REPO/build/.ws}"
-out="${TEST_RESULTS_DIR:?TEST_RESULTS_DIR not set}"
-mkdir -p "$out"
+source "$(dirname "$0")/lib/junit.sh"
+suite_env can-vcan
+WS="$ws"
 bin="$WS/devel/lib/offshore_gnc"
 run="$REPO/.vm/run-can-vcan"
 rm -rf "$run" && mkdir -p "$run"
 
-xml_case() {  # xml_case NAME (pass|fail|skip) MESSAGE FILE
-  local msg; msg="$(printf '%s' "$3" | sed -e 's/&/\&amp;/g' -e 's/</\&lt;/g' -e 's/>/\&gt;/g' -e 's/"/\&quot;/g')"
-  local body=""
-  [ "$2" = fail ] && body="<failure message=\"$msg\"/>"
-  [ "$2" = skip ] && body="<skipped message=\"$msg\"/>"
-  local f=0 s=0; [ "$2" = fail ] && f=1; [ "$2" = skip ] && s=1
-  cat > "$4" <<XML
-<?xml version="1.0" encoding="UTF-8"?>
-<testsuite name="can_vcan_$1" tests="1" failures="$f" errors="0" skipped="$s">
-  <testcase classname="can_vcan" name="$1">$body</testcase>
-</testsuite>
-XML
+xml_case() {  # xml_case NAME (pass|fail|skip) MESSAGE FILE: a one-case suite of its own
+  junit_case can_vcan "$1" "$2" "$3"
+  junit_write "can_vcan_$1" "$4" || true
 }
 
 if [ ! -x "$bin/test_can_vcan" ] || [ ! -x "$bin/can_decode" ]; then

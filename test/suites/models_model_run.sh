@@ -2,11 +2,8 @@
 # model_run as a user runs it (thesis Fig. 3.10 workflow): a CSV of joystick / thruster commands in, a CSV of
 # states out; a bad parameter file and a non-finite command are reported. Env: TEST_RESULTS_DIR, WS.
 set -uo pipefail
-REPO="$(cd "$(dirname "$0")/../.." && pwd)"
-out="${TEST_RESULTS_DIR:?TEST_RESULTS_DIR not set}"
-ws="${WS:-$REPO/build/.ws}"
-work="$ws/model-run"
-mkdir -p "$out" "$work"
+source "$(dirname "$0")/lib/junit.sh"
+suite_env model-run
 # shellcheck disable=SC1091
 set +u; source "$ws/devel/setup.bash"; set -u
 export PATH="/usr/bin:/bin:$PATH"
@@ -47,13 +44,5 @@ r = run(["--vehicle", "usv", "--params", "config/models/usv.yaml"], "0,0,0\n")
 assert r.returncode == 1 and b"line 1" in r.stderr, r.stderr
 print("ok")
 PY
-if tail -n1 "$work/check.log" | grep -qx ok; then
-  case='<testcase classname="models" name="model_run_cli"/>'; fails=0
-else
-  msg="$(tail -n 3 "$work/check.log" | tr '"<>&' "'   " | tr '\n' ' ')"
-  case="<testcase classname=\"models\" name=\"model_run_cli\"><failure message=\"$msg\"/></testcase>"; fails=1
-fi
-printf '<?xml version="1.0"?>\n<testsuite name="models_model_run" tests="1" failures="%s">%s</testsuite>\n' \
-  "$fails" "$case" > "$out/models_model_run.xml"
-cat "$work/check.log"
-exit $fails
+junit_check_log models model_run_cli "$work/check.log"
+junit_write models_model_run "$out/models_model_run.xml"

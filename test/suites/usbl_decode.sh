@@ -3,11 +3,8 @@
 # garbage and damaged frames -> one JSON object per message in SI units, one per rejection with its reason.
 # Env: TEST_RESULTS_DIR, WS.
 set -uo pipefail
-REPO="$(cd "$(dirname "$0")/../.." && pwd)"
-out="${TEST_RESULTS_DIR:?TEST_RESULTS_DIR not set}"
-ws="${WS:-$REPO/build/.ws}"
-work="$ws/usbl-decode"
-mkdir -p "$out" "$work"
+source "$(dirname "$0")/lib/junit.sh"
+suite_env usbl-decode
 # shellcheck disable=SC1091
 set +u; source "$ws/devel/setup.bash"; set -u
 export PATH="/usr/bin:/bin:$PATH"
@@ -44,13 +41,5 @@ summary = json.loads(a.stderr.decode().strip().splitlines()[-1])["summary"]
 assert summary["frames_ok"] == 3 and summary["bad_crc"] >= 1 and summary["garbage_bytes"] == 7, summary
 print("ok")
 PY
-if tail -n1 "$work/check.log" | grep -qx ok; then
-  case='<testcase classname="usbl_decode" name="cli_capture"/>'; fails=0
-else
-  msg="$(tail -n 3 "$work/check.log" | tr '"<>&' "'   " | tr '\n' ' ')"
-  case="<testcase classname=\"usbl_decode\" name=\"cli_capture\"><failure message=\"$msg\"/></testcase>"; fails=1
-fi
-printf '<?xml version="1.0" encoding="UTF-8"?>\n<testsuite name="usbl_decode" tests="1" failures="%d" errors="0" skipped="0">%s</testsuite>\n' \
-  "$fails" "$case" > "$out/usbl_decode.xml"
-cat "$work/check.log" >&2
-[ $fails = 0 ]
+junit_check_log usbl_decode cli_capture "$work/check.log"
+junit_write usbl_decode "$out/usbl_decode.xml"

@@ -31,8 +31,38 @@ def free_port():
         return s.getsockname()[1]
 
 
+def descendants(pid):
+    """pid and every process below it (from /proc). roslaunch starts its nodes in process groups of their own:
+    signalling its group does not reach them, and once it is gone they are orphans nobody would stop."""
+    children = {}
+    for d in os.listdir("/proc"):
+        if d.isdigit():
+            try:
+                with open("/proc/%s/stat" % d) as f:
+                    ppid = int(f.read().rsplit(")", 1)[1].split()[1])
+                children.setdefault(ppid, []).append(int(d))
+            except (OSError, ValueError, IndexError):
+                pass
+    todo, tree = [pid], []
+    while todo:
+        p = todo.pop()
+        tree.append(p)
+        todo += children.get(p, [])
+    return tree
+
+
+def kill_tree(pid, sig=signal.SIGKILL):
+    for p in descendants(pid):
+        try:
+            os.kill(p, sig)
+        except (ProcessLookupError, PermissionError):
+            pass
+
+
 def _kill(proc, grace=5.0):
-    """SIGINT the process group (ROS nodes shut down cleanly), then SIGTERM, then SIGKILL."""
+    """SIGINT the process group (ROS nodes shut down cleanly), then SIGTERM, then SIGKILL; finally SIGKILL
+    whatever of its process tree is left."""
+    tree = descendants(proc.pid) if proc.poll() is None else []
     if proc.poll() is None:
         for sig, wait in ((signal.SIGINT, grace), (signal.SIGTERM, 2.0), (signal.SIGKILL, 2.0)):
             try:
@@ -49,6 +79,11 @@ def _kill(proc, grace=5.0):
         os.killpg(proc.pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
         pass
+    for p in tree[1:]:  # pids of a finished tree may be reused soon, but not within these seconds
+        try:
+            os.kill(p, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
+            pass
     _LIVE.discard(proc)
 
 
@@ -130,6 +165,20 @@ class Master:
         while time.time() < deadline:
             if topic in self.topics():
                 return True
+            time.sleep(0.1)
+        return False
+
+    def wait_for_param(self, name, timeout=60.0):
+        """True once the parameter exists (e.g. /use_sim_time, set by a launch file), False after timeout."""
+        import rosgraph
+        m = rosgraph.Master("/harness", master_uri=self.uri)
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            try:
+                if m.hasParam(name):
+                    return True
+            except OSError:
+                pass
             time.sleep(0.1)
         return False
 

@@ -43,16 +43,33 @@ class RvizScreen:
         return False
 
 
-def count_colour(png, rgb, tol=40):
-    """Pixels of a PNG within `tol` (per channel, 0-255) of the colour rgb."""
+BACKGROUND_RGB = (48, 48, 48)  # config/rviz/*.rviz "Background Color": marks the 3-D view on the screen
+
+
+def _rgb(png):
     import numpy as np
     import matplotlib.image as mpimg
     img = mpimg.imread(png)
     if img.ndim == 2:  # `import` writes a grayscale PNG when the screen is still all black
         img = np.stack([img] * 3, axis=2)
     if img.dtype != np.uint8:
-        img = (img[..., :3] * 255).round().astype(np.int16)
-    else:
-        img = img[..., :3].astype(np.int16)
-    d = np.abs(img - np.array(rgb, dtype=np.int16)).max(axis=2)
-    return int((d <= tol).sum())
+        return (img[..., :3] * 255).round().astype(np.int16)
+    return img[..., :3].astype(np.int16)
+
+
+def _near(img, rgb, tol):
+    import numpy as np
+    return np.abs(img - np.array(rgb, dtype=np.int16)).max(axis=2) <= tol
+
+
+def count_colour(png, rgb, tol=40, view_only=True):
+    """Pixels of a PNG within `tol` (per channel, 0-255) of the colour rgb; by default only inside rviz's 3-D
+    view (the bounding box of its background colour), so that the display icons in the side panels don't count."""
+    img = _rgb(png)
+    if view_only:
+        import numpy as np
+        ys, xs = np.nonzero(_near(img, BACKGROUND_RGB, 2))
+        if len(xs) == 0:
+            return 0
+        img = img[ys.min():ys.max() + 1, xs.min():xs.max() + 1]
+    return int(_near(img, rgb, tol).sum())
