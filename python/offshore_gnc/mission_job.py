@@ -115,7 +115,9 @@ class SharedClock:
 class Screenshots:
     """rviz with the USV configuration under Xvfb, shot every few wall seconds once the USV is under way; keeps
     the shot where the planned path, the target from the AUV and the safety boxes are all drawn (the last such)."""
-    COLOURS = {"planned_path": (25, 255, 0), "target": (255, 0, 255), "safety_box": (255, 0, 0)}
+    # config/rviz/usv.rviz path colour, the mission's target marker, the guidance's box outlines (red when the
+    # box cuts the path, olive when it does not)
+    COLOURS = {"planned_path": [(25, 255, 0)], "target": [(255, 0, 255)], "safety_box": [(255, 0, 0), (128, 128, 0)]}
     MIN_PIXELS = 30
 
     def __init__(self, master, out):
@@ -135,7 +137,7 @@ class Screenshots:
         except (RuntimeError, subprocess.SubprocessError) as e:
             print("[mission] screenshot failed: %s" % e, flush=True)
             return
-        px = {k: count_colour(tmp, rgb) for k, rgb in self.COLOURS.items()}
+        px = {k: sum(count_colour(tmp, rgb) for rgb in rgbs) for k, rgbs in self.COLOURS.items()}
         # all colours present beats any partial picture; among complete ones the latest (most path followed)
         score = min(px.values()) >= self.MIN_PIXELS and 1e9 + self.last_t or sum(min(v, 500) for v in px.values())
         if score >= self.best_score:

@@ -16,6 +16,9 @@ ClosedLoopConfig usvStraight(bool adaptive_crab) {
   c.los.adaptive_crab = adaptive_crab;
   c.los.surge_speed = 1.5;
   c.los.crab_gain = 0.004;
+  c.los.final_radius = 2.0;        // as config/guidance/usv.yaml: stop at the last waypoint, slow down before it
+  c.los.approach_distance = 60.0;
+  c.los.approach_speed = 0.2;
   c.max_time = 400.0;
   return c;
 }

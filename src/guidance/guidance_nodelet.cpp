@@ -43,6 +43,9 @@ class GuidanceNodelet : public nodelet::Nodelet {
       lp.sphere = p.flag("los/sphere", auv);
       lp.acceptance_radius = p.number("los/acceptance_radius", auv ? 3.0 : 16.0, 0.01, 1000.0);
       lp.surge_speed = p.number("los/surge_speed", auv ? 0.3 : 1.5, 0.0, 20.0);
+      lp.final_radius = p.number("los/final_radius", 0.0, 0.0, 1000.0);
+      lp.approach_distance = p.number("los/approach_distance", 0.0, 0.0, 1e4);
+      lp.approach_speed = p.number("los/approach_speed", 0.3, 0.0, 20.0);
       sbb_.safety_x = p.number("sbb/safety_x", 5.0, 0.0, 1000.0);
       sbb_.safety_y = p.number("sbb/safety_y", 5.0, 0.0, 1000.0);
       sbb_.corridor = p.number("sbb/corridor", 2.0, 0.0, 100.0);
@@ -72,7 +75,8 @@ class GuidanceNodelet : public nodelet::Nodelet {
     GuidanceConfig c;
     c.kp = lp.kp, c.ki = lp.ki, c.integral_limit = lp.integral_limit, c.adaptive_crab = lp.adaptive_crab;
     c.crab_gain = lp.crab_gain, c.crab_limit = lp.crab_limit, c.acceptance_radius = lp.acceptance_radius;
-    c.surge_speed = lp.surge_speed, c.safety_x = sbb_.safety_x, c.safety_y = sbb_.safety_y;
+    c.surge_speed = lp.surge_speed, c.final_radius = lp.final_radius, c.approach_distance = lp.approach_distance;
+    c.safety_x = sbb_.safety_x, c.safety_y = sbb_.safety_y;
     c.corridor = sbb_.corridor, c.max_offset = sbb_.max_offset;
     reconfigure_->updateConfig(c);
     reconfigure_->setCallback([this](GuidanceConfig& c, uint32_t) { onReconfigure(c); });
@@ -98,7 +102,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     guidance::LosParams lp = los_->params();
     lp.kp = c.kp, lp.ki = c.ki, lp.integral_limit = c.integral_limit, lp.adaptive_crab = c.adaptive_crab;
     lp.crab_gain = c.crab_gain, lp.crab_limit = c.crab_limit, lp.acceptance_radius = c.acceptance_radius;
-    lp.surge_speed = c.surge_speed;
+    lp.surge_speed = c.surge_speed, lp.final_radius = c.final_radius, lp.approach_distance = c.approach_distance;
     guidance::SbbParams sp = sbb_;
     sp.safety_x = c.safety_x, sp.safety_y = c.safety_y, sp.corridor = c.corridor, sp.max_offset = c.max_offset;
     try {

@@ -19,6 +19,9 @@ void LosParams::validate() const {
   requireRange("los/acceptance_radius", acceptance_radius, 0.01, 1000.0);
   requireRange("los/surge_speed", surge_speed, 0.0, 20.0);
   requireRange("los/min_leg_length", min_leg_length, 1e-6, 10.0);
+  requireRange("los/final_radius", final_radius, 0.0, 1000.0);
+  requireRange("los/approach_distance", approach_distance, 0.0, 1e4);
+  requireRange("los/approach_speed", approach_speed, 0.0, 20.0);
 }
 
 double legGeometry(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p, double* e,
@@ -141,7 +144,9 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
     const double dist = p_.sphere ? (s.position - b).norm() : (p - b.head<2>()).norm();
     // A purely vertical leg has no horizontal length: only the sphere switches it.
     const bool passed = leg_len > p_.min_leg_length && along >= leg_len;
-    if (dist > p_.acceptance_radius && !passed) break;
+    const bool last = leg_ + 1 >= wp_.size();
+    const double radius = last && p_.final_radius > 0.0 ? p_.final_radius : p_.acceptance_radius;
+    if (dist > radius && !passed) break;
     if (leg_ + 1 >= wp_.size()) {
       finished_ = true;
       counters_.increment("path_finished");
@@ -187,13 +192,18 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
   o.desired_heading = wrapAngle(chi_p + chi_r - beta_hat_);      // eq. 4.9 with beta estimated
   o.desired_depth = wp_[leg_].z();                                // constant-depth legs, depth apart
   o.desired_surge = p_.surge_speed;
+  o.distance_to_go = remaining(s.position);
+  if (p_.approach_distance > 0.0 && o.distance_to_go < p_.approach_distance) {
+    // linear slowdown to approach_speed at the last waypoint, so that station keeping starts from low speed
+    const double f = o.distance_to_go / p_.approach_distance;
+    o.desired_surge = std::min(p_.surge_speed, p_.approach_speed + f * (p_.surge_speed - p_.approach_speed));
+  }
   o.hold_position = s.position;
   {
     const Eigen::Vector3d& a = wp_[leg_ - 1];
     const Eigen::Vector2d pp = a.head<2>() + along * Eigen::Vector2d(std::cos(chi_p), std::sin(chi_p));
     o.path_point = Eigen::Vector3d(pp.x(), pp.y(), o.desired_depth);
   }
-  o.distance_to_go = remaining(s.position);
   o.status_text = "following leg " + std::to_string(leg_) + " of " + std::to_string(wp_.size() - 1);
   return o;
 }

@@ -35,7 +35,7 @@ struct ClosedLoopResult {
   double min_clearance = 1e9;          // closest approach to an obstacle's edge [m]
   std::size_t inside_box_samples = 0;  // samples inside a safety box (must be 0)
   std::size_t nan_outputs = 0;         // actuator outputs that were not finite (must be 0)
-  double hold_error = 0.0;             // distance to the last waypoint after 60 s of station keeping [m]
+  double hold_error = 0.0;             // largest distance to the last waypoint 30-90 s into station keeping [m]
   std::vector<Eigen::Vector3d> track;  // positions at the control rate
   std::vector<Eigen::Vector3d> planned_path;
   std::string status;

@@ -27,6 +27,12 @@ struct LosParams {
   bool sphere = false;             // 3-D sphere of acceptance (AUV) instead of the 2-D circle
   double surge_speed = 1.5;        // cruise surge reference [m/s]
   double min_leg_length = 0.05;    // consecutive waypoints closer than this are merged [m]
+  // The last waypoint is where the vehicle must stop (the stand-off point), not a corner to cut: it is reached
+  // within final_radius (0: acceptance_radius, as the other waypoints) or when passed. With R = 2 L_USV = 16 m
+  // and waypoints every 10 m, the path otherwise ended up to 16 m short of the target.
+  double final_radius = 0.0;       // [m]
+  double approach_distance = 0.0;  // slow down over this distance to go to the last waypoint (0: no slowdown) [m]
+  double approach_speed = 0.3;     // surge reference at the last waypoint when slowing down [m/s]
 
   void validate() const;           // throws ConfigError naming the value
 };

@@ -18,7 +18,9 @@ TEST(ClosedLoop, UsvFiveWaypointStraightPathWithCrossCurrent) {
   EXPECT_TRUE(r.finished) << r.status;
   EXPECT_EQ(r.nan_outputs, 0u);
   EXPECT_LE(r.metrics.rmse, 0.5) << "RMSE " << r.metrics.rmse;
-  EXPECT_LT(r.hold_error, 15.0);  // waterjet DP against 0.2 m/s current is coarse (see docs)
+  // Waterjet DP against a 0.2 m/s current is coarse (docs/guidance-control.md): measured 8.3 m; before the
+  // final radius, the slowdown and turn-then-drive it was 16-27 m.
+  EXPECT_LT(r.hold_error, 10.0);
   // Without the crab-angle estimate the standing error is larger (the thesis' main error source).
   const auto n = runUsv(scenarios::usvStraight(false));
   EXPECT_GT(n.metrics.rmse, r.metrics.rmse);

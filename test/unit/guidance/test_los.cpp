@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/guidance/los.h"
 #include "offshore_gnc/guidance/metrics.h"
 #include "offshore_gnc/guidance/paths.h"
@@ -111,6 +112,29 @@ TEST(Los, PassedWaypointRuleNeverLoopsBack) {
   const auto o = g.update(at(51, 10), 0.1);
   EXPECT_EQ(o.active_leg, 2u);
   EXPECT_NEAR(std::abs(o.desired_heading), std::atan(1.0), 1e-9);  // steers back to the path, not to wp 1
+}
+
+TEST(Los, LastWaypointNeedsTheFinalRadiusAndSlowsDown) {
+  LosParams p = plain();
+  p.acceptance_radius = 16.0;  // 2 L_USV: intermediate waypoints every 10 m switch early
+  p.final_radius = 2.0;
+  p.approach_distance = 20.0;
+  p.approach_speed = 0.3;
+  p.surge_speed = 1.5;
+  LosGuidance g(p);
+  g.setPath({V3(0, 0, 0), V3(10, 0, 0), V3(20, 0, 0), V3(50, 0, 0)});
+  auto o = g.update(at(5, 0), 0.1);  // 5 m from wp 1 (inside 16 m) -> switches on, 15 m from wp 2 too
+  EXPECT_EQ(o.active_leg, 3u);
+  EXPECT_DOUBLE_EQ(o.desired_surge, 1.5);  // 45 m to go: cruise
+  o = g.update(at(40, 0), 0.1);            // 10 m short of the end: inside R but not the final radius
+  EXPECT_EQ(o.mode, Mode::kFollowPath);
+  EXPECT_NEAR(o.desired_surge, 0.3 + 0.5 * 1.2, 1e-9);  // halfway through the slowdown
+  o = g.update(at(48.5, 0.5), 0.1);
+  EXPECT_EQ(o.mode, Mode::kStationKeeping);
+  EXPECT_NEAR(o.hold_position.x(), 50.0, 1e-12);
+  LosParams bad = p;
+  bad.final_radius = -1.0;
+  EXPECT_THROW(LosGuidance{bad}, ConfigError);
 }
 
 TEST(Los, EndOfPathStationKeeping) {
