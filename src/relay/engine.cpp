@@ -23,7 +23,7 @@ namespace offshore_gnc {
 namespace relay {
 
 namespace {
-constexpr std::uint16_t kVersion = 1;
+constexpr std::uint16_t kVersion = 2;  // 2: the hello carries the UDP port
 constexpr std::size_t kOutBufferLimit = 8u << 20;  // pump reliable frames only while below this
 constexpr std::size_t kNonceSize = 16;
 
@@ -64,6 +64,7 @@ void validate(RelayConfig& c) {
   requireRange("queue/max_messages", double(c.queue_messages), 1, 1e6);
   requireRange("queue/max_bytes", double(c.queue_bytes), 1024, 4e9);
   requireRange("max_frame_bytes", double(c.max_frame_bytes), 1024, 1u << 30);
+  requireRange("max_datagram_bytes", double(c.max_datagram_bytes), 512, 65000);
   std::set<std::string> names;
   for (const auto& p : c.peers) {
     if (p.name.empty() || p.name == c.name) throw configError("peer name '" + p.name + "' is empty or our own");
@@ -97,9 +98,16 @@ struct Engine::Conn {
   FrameDecoder decoder;
   std::vector<std::uint8_t> out;
   std::size_t out_pos = 0;
-  Authenticator tx_auth;
+  Authenticator tx_auth, rx_auth;
   std::uint64_t tx_counter = 0;
   ReplayWindow replay;
+  // UDP side of the link: the peer's datagram address (its TCP address, the port from its hello), our own
+  // frame counter and the replay window of what arrives (datagrams may be lost or reordered).
+  sockaddr_in udp_to{};
+  bool udp = false;
+  std::uint64_t udp_tx_counter = 0, udp_rx_max = 0;
+  ReplayWindow udp_replay;
+  std::set<std::size_t> tcp_first_sent;  // topics whose first message went by TCP (behind the announce)
   std::string nonce = randomBytes(kNonceSize), remote_nonce;
   Peer* peer = nullptr;  // known after the hello
   std::uint64_t hello_ack_session = 0, hello_ack_seq = 0, remote_session = 0;
@@ -124,7 +132,7 @@ struct Engine::Peer {
   std::map<std::uint16_t, std::pair<long, Announce>> incoming;  // remote topic id -> (in index or -1, announce)
   std::vector<TokenBucket> limits;  // per topic index
   struct Stat {
-    std::uint64_t messages = 0, bytes = 0, dropped = 0, last_messages = 0, last_bytes = 0;
+    std::uint64_t messages = 0, bytes = 0, dropped = 0, last_messages = 0, last_bytes = 0, datagrams = 0;
     bool used = false;
   };
   std::vector<Stat> out_stats, in_stats;  // per topic index
@@ -140,6 +148,7 @@ struct Engine::Delivery {
   long index;
   Announce announce;
   std::vector<std::uint8_t> data;
+  bool datagram = false;  // arrived over UDP (for the link status' transport)
 };
 
 Engine::Engine(RelayConfig cfg, Callbacks cb, Counters& counters)
@@ -184,6 +193,29 @@ void Engine::start() {
     listen_port_ = ntohs(a.sin_port);
     setNonBlocking(listen_fd_);
   }
+  if (cfg_.udp) {
+    // Bound to the TCP listening address and port when listening (peers know it), else any free port; the
+    // hello tells the peer which.
+    udp_fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(listen_fd_ >= 0 ? listen_port_ : 0);
+    if (listen_fd_ < 0 || inet_pton(AF_INET, cfg_.listen_host.c_str(), &a.sin_addr) != 1) a.sin_addr.s_addr = INADDR_ANY;
+    if (udp_fd_ < 0 || bind(udp_fd_, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0) {
+      log(2, std::string("relay ") + cfg_.name + ": no UDP socket (" + std::strerror(errno) +
+                 "): best-effort topics use TCP");
+      if (udp_fd_ >= 0) close(udp_fd_);
+      udp_fd_ = -1;
+    } else {
+      socklen_t len = sizeof(a);
+      getsockname(udp_fd_, reinterpret_cast<sockaddr*>(&a), &len);
+      udp_port_ = ntohs(a.sin_port);
+      int buf = 4 << 20;  // room for bursts of large best-effort messages
+      setsockopt(udp_fd_, SOL_SOCKET, SO_RCVBUF, &buf, sizeof(buf));
+      setsockopt(udp_fd_, SOL_SOCKET, SO_SNDBUF, &buf, sizeof(buf));
+      setNonBlocking(udp_fd_);
+    }
+  }
   wake_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   running_ = true;
   thread_ = std::thread([this] { run(); });
@@ -204,7 +236,8 @@ void Engine::stop() {
   for (auto& p : peers_) p->conn = nullptr;
   if (listen_fd_ >= 0) close(listen_fd_);
   if (wake_fd_ >= 0) close(wake_fd_);
-  listen_fd_ = wake_fd_ = -1;
+  if (udp_fd_ >= 0) close(udp_fd_);
+  listen_fd_ = wake_fd_ = udp_fd_ = -1;
 }
 
 void Engine::log(int level, const std::string& s) {
@@ -257,12 +290,29 @@ void Engine::publish(std::size_t index, const TypeInfo& info, Bytes data) {
         counters_.increment("queue_overflow");
       }
       pump(p);
+    } else if (p.conn && p.conn->established && p.conn->udp && p.conn->tcp_first_sent.count(index) &&
+               wire->size() + kHeaderSize + kTagSize <= cfg_.max_datagram_bytes) {
+      // (the first message of a topic on a link goes by TCP, in order behind its announce: a datagram could
+      // overtake the announce and be dropped as an unknown topic, and the first message is never lost)
+      FrameHeader h;
+      h.type = FrameType::Data;
+      h.flags = flags;
+      h.topic_id = static_cast<std::uint16_t>(index);
+      if (sendDatagram(*p.conn, h, wire->data(), wire->size())) {
+        ++st.messages;
+        ++st.datagrams;
+        st.bytes += wire->size();
+      } else {
+        ++st.dropped;  // socket buffer full: best effort
+        counters_.increment("best_effort_dropped");
+      }
     } else if (p.conn && p.conn->out.size() - p.conn->out_pos < kOutBufferLimit) {
       FrameHeader h;
       h.type = FrameType::Data;
       h.flags = flags;
       h.topic_id = static_cast<std::uint16_t>(index);
       sendFrame(*p.conn, h, wire->data(), wire->size());
+      if (p.conn->established) p.conn->tcp_first_sent.insert(index);
       ++st.messages;
       st.bytes += wire->size();
     } else {
@@ -303,6 +353,60 @@ void Engine::sendFrame(Conn& c, FrameHeader h, const std::uint8_t* p, std::size_
   encodeFrame(h, p, n, c.tx_auth, c.out);
 }
 
+bool Engine::sendDatagram(Conn& c, FrameHeader h, const std::uint8_t* p, std::size_t n) {
+  static thread_local std::vector<std::uint8_t> buf;
+  buf.clear();
+  h.counter = ++c.udp_tx_counter;
+  encodeFrame(h, p, n, c.tx_auth, buf);
+  const ssize_t r = sendto(udp_fd_, buf.data(), buf.size(), MSG_DONTWAIT, reinterpret_cast<const sockaddr*>(&c.udp_to),
+                           sizeof(c.udp_to));
+  return r == static_cast<ssize_t>(buf.size());
+}
+
+void Engine::onDatagrams(std::vector<Delivery>& out) {
+  static thread_local std::vector<std::uint8_t> buf(65536);
+  for (int budget = 0; budget < 1024; ++budget) {
+    sockaddr_in from{};
+    socklen_t len = sizeof(from);
+    const ssize_t r = recvfrom(udp_fd_, buf.data(), buf.size(), MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), &len);
+    if (r < 0) break;
+    // Only from the UDP address of an established link, authenticated with that link's session key.
+    Conn* c = nullptr;
+    for (auto& cc : conns_)
+      if (!cc->closed && cc->established && cc->udp && cc->udp_to.sin_port == from.sin_port &&
+          cc->udp_to.sin_addr.s_addr == from.sin_addr.s_addr)
+        c = cc.get();
+    if (!c) {
+      counters_.increment("udp_unknown_source");
+      continue;
+    }
+    FrameDecoder d(cfg_.max_datagram_bytes);
+    d.setAuthenticator(c->rx_auth);
+    d.feed(buf.data(), std::size_t(r));
+    Frame f;
+    const DecodeStatus s = d.next(f);
+    if (s != DecodeStatus::Ok || d.buffered() != 0 || f.header.type != FrameType::Data ||
+        (f.header.flags & kReliable)) {
+      counters_.increment(s == DecodeStatus::BadAuth ? "frames_bad_auth" : "udp_malformed");
+      ++c->peer->rejected;
+      continue;
+    }
+    if (!c->udp_replay.accept(f.header.counter)) {
+      counters_.increment("frames_replayed");
+      ++c->peer->rejected;
+      continue;
+    }
+    // Loss: counters skipped over (a reordered datagram that arrives later is still within the window).
+    if (f.header.counter > c->udp_rx_max + 1 && c->udp_rx_max > 0)
+      counters_.increment("udp_lost", f.header.counter - c->udp_rx_max - 1);
+    c->udp_rx_max = std::max(c->udp_rx_max, f.header.counter);
+    counters_.increment("udp_datagrams");
+    const std::size_t before = out.size();
+    handleData(*c->peer, f, out);
+    if (out.size() > before) out.back().datagram = true;
+  }
+}
+
 void Engine::flush(Conn& c) {
   while (!c.closed && !c.connecting && c.out_pos < c.out.size()) {
     const ssize_t r = send(c.fd, c.out.data() + c.out_pos, c.out.size() - c.out_pos, MSG_NOSIGNAL);
@@ -331,6 +435,7 @@ void Engine::sendHello(Conn& c) {
   if (c.peer) ack_session = c.peer->rx_session, ack_seq = c.peer->rx_seq;
   w.u64(ack_session);
   w.u64(ack_seq);
+  w.u16(static_cast<std::uint16_t>(udp_fd_ >= 0 ? udp_port_ : 0));  // 0: no UDP here
   FrameHeader h;
   h.type = FrameType::Hello;
   c.tx_auth = psk_;  // the hello is authenticated with the PSK itself
@@ -473,6 +578,8 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
     r.bytes(nonce, kNonceSize);
     r.u64(c.hello_ack_session);
     r.u64(c.hello_ack_seq);
+    std::uint16_t udp_port = 0;
+    r.u16(udp_port);
     if (!r.ok() || version != kVersion) {
       counters_.increment("frames_malformed");
       closeConn(c, "bad hello");
@@ -492,7 +599,14 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
     c.remote_nonce.assign(reinterpret_cast<const char*>(nonce), kNonceSize);
     // Per-direction session keys from both fresh nonces.
     c.tx_auth = psk_.derive("ogr1" + c.nonce + c.remote_nonce);
-    c.decoder.setAuthenticator(psk_.derive("ogr1" + c.remote_nonce + c.nonce));
+    c.rx_auth = psk_.derive("ogr1" + c.remote_nonce + c.nonce);
+    c.decoder.setAuthenticator(c.rx_auth);
+    socklen_t alen = sizeof(c.udp_to);
+    if (udp_port && udp_fd_ >= 0 && getpeername(c.fd, reinterpret_cast<sockaddr*>(&c.udp_to), &alen) == 0 &&
+        c.udp_to.sin_family == AF_INET) {
+      c.udp_to.sin_port = htons(udp_port);
+      c.udp = true;
+    }
     // Prove liveness with the session key; the link counts as up on the first session frame received.
     Writer w;
     w.u64(0);
@@ -579,36 +693,40 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
       if (index >= 0) out.push_back({Delivery::Announce_, &p, h.topic_id, index, a, {}});
       return;
     }
-    case FrameType::Data: {
-      auto it = p.incoming.find(h.topic_id);
-      if (it == p.incoming.end()) {
-        counters_.increment("unknown_topic");
-        ++p.rejected;
-        return;
-      }
-      if (h.flags & kReliable) {
-        if (h.seq <= p.rx_seq) {
-          counters_.increment("duplicates_dropped");
-          return;
-        }
-        if (p.rx_seq && h.seq > p.rx_seq + 1) counters_.increment("sequence_gaps", h.seq - p.rx_seq - 1);
-        p.rx_seq = h.seq;  // acked after delivery (below, in run)
-      }
-      // index resolved later (the announce may be decided in this same batch)
-      Delivery d{Delivery::Message, &p, h.topic_id, -1, {}, {}};
-      if (h.flags & kCompressed) {
-        if (!decompress(f.payload.data(), f.payload.size(), cfg_.max_frame_bytes, d.data)) {
-          counters_.increment("frames_malformed");
-          ++p.rejected;
-          return;
-        }
-      } else {
-        d.data = std::move(f.payload);
-      }
-      out.push_back(std::move(d));
+    case FrameType::Data:
+      handleData(p, f, out);
+      return;
+  }
+}
+
+void Engine::handleData(Peer& p, Frame& f, std::vector<Delivery>& out) {
+  const FrameHeader& h = f.header;
+  auto it = p.incoming.find(h.topic_id);
+  if (it == p.incoming.end()) {
+    counters_.increment("unknown_topic");
+    ++p.rejected;
+    return;
+  }
+  if (h.flags & kReliable) {
+    if (h.seq <= p.rx_seq) {
+      counters_.increment("duplicates_dropped");
       return;
     }
+    if (p.rx_seq && h.seq > p.rx_seq + 1) counters_.increment("sequence_gaps", h.seq - p.rx_seq - 1);
+    p.rx_seq = h.seq;  // acked after delivery (below, in run)
   }
+  // index resolved later (the announce may be decided in this same batch)
+  Delivery d{Delivery::Message, &p, h.topic_id, -1, {}, {}};
+  if (h.flags & kCompressed) {
+    if (!decompress(f.payload.data(), f.payload.size(), cfg_.max_frame_bytes, d.data)) {
+      counters_.increment("frames_malformed");
+      ++p.rejected;
+      return;
+    }
+  } else {
+    d.data = std::move(f.payload);
+  }
+  out.push_back(std::move(d));
 }
 
 void Engine::onReadable(Conn& c, double now, std::vector<Delivery>& out) {
@@ -696,6 +814,11 @@ void Engine::run() {
         fds.push_back({c->fd, ev, 0});
         polled.push_back(c.get());
       }
+      // last: a datagram and the TCP announce of its topic from the same poll round are handled announce first
+      if (udp_fd_ >= 0) {
+        fds.push_back({udp_fd_, POLLIN, 0});
+        polled.push_back(nullptr);
+      }
       for (auto& p : peers_) {
         if (!p->pending_acks.empty()) timeout = std::min(timeout, std::max(0.0, cfg_.ack_delay / 2));
         if (!p->cfg.host.empty() && !p->conn && !p->dialing) timeout = std::min(timeout, std::max(0.0, p->next_dial - now));
@@ -718,7 +841,8 @@ void Engine::run() {
         if (fds[i].revents & POLLIN) acceptOne();
         ++i;
       }
-      for (; i < fds.size(); ++i) {
+      const std::size_t n_conn_fds = fds.size() - (udp_fd_ >= 0 ? 1 : 0);
+      for (; i < n_conn_fds; ++i) {
         Conn& c = *polled[i];
         if (c.closed || !fds[i].revents) continue;
         if (c.connecting) {
@@ -734,6 +858,7 @@ void Engine::run() {
         if (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) onReadable(c, now, deliveries);
         if (!c.closed) flush(c);
       }
+      if (udp_fd_ >= 0 && (fds.back().revents & POLLIN)) onDatagrams(deliveries);
     }
     if (deliveries.empty()) {
       sendAcks(nowS());
@@ -776,6 +901,7 @@ void Engine::run() {
             continue;
           }
           ++st.messages;
+          if (d.datagram) ++st.datagrams;
           st.bytes += d.data.size();
         } else {
           counters_.increment("refused_messages_dropped");
@@ -836,7 +962,8 @@ std::vector<PeerStatus> Engine::status() {
       ts.topic = t.topic;
       ts.remote = t.direction == "out" ? t.remote : t.topic;
       ts.direction = t.direction;
-      ts.transport = "tcp";
+      // what carried the messages so far: udp, tcp, or both (best-effort frames too large for a datagram)
+      ts.transport = st.datagrams == 0 ? "tcp" : (st.datagrams == st.messages ? "udp" : "udp+tcp");
       ts.messages = st.messages;
       ts.bytes = st.bytes;
       ts.dropped = st.dropped;

@@ -85,6 +85,8 @@ relay::RelayConfig loadConfig(const ros::NodeHandle& pnh) {
   c.queue_messages = static_cast<std::size_t>(p.integer("queue/max_messages", 1000, 1, 1000000));
   c.queue_bytes = static_cast<std::size_t>(p.number("queue/max_bytes", 64.0 * (1 << 20), 1024, 4e9));
   c.max_frame_bytes = static_cast<std::size_t>(p.number("max_frame_bytes", 32.0 * (1 << 20), 1024, 1 << 30));
+  c.udp = p.flag("udp", true);
+  c.max_datagram_bytes = static_cast<std::size_t>(p.number("max_datagram_bytes", 60000, 512, 65000));
   forEachEntry(pnh, "peers", [&c](XmlRpc::XmlRpcValue& e, const std::string& where) {
     relay::PeerConfig pc;
     pc.name = member(e, "name", where, true);
@@ -209,7 +211,8 @@ class RelayNodelet : public nodelet::Nodelet {
       else
         s.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(last_status_.size() - up) + " link(s) down");
       ros_util::addCounters(s, counters_, {"frames_bad_auth", "frames_malformed", "frames_oversized", "frames_replayed",
-                                           "unknown_topic", "queue_overflow", "refused_type_mismatch"});
+                                           "unknown_topic", "queue_overflow", "refused_type_mismatch", "udp_datagrams",
+                                           "udp_lost", "udp_malformed", "udp_unknown_source"});
     });
     try {
       engine_->start();

@@ -130,6 +130,14 @@ def test_shipped_configs_carry_the_thesis_topics_latched_target():
         assert "/usv_heading" in auv.topics()
         st = link_status(usv)
         assert st["up"] and st["local_name"] == "usv" and st["peer_name"] == "auv"
+        # best effort goes by UDP after its first message (which rides TCP behind the announce)
+        time.sleep(1.5)  # a few more headings at 5 Hz
+        rc, out = usv.call(["rostopic", "echo", "-n", "1", "/relay/link_status"], timeout=10)  # with the arrays
+        st = yaml.safe_load(out.split("\n---")[0])
+        heading = [t for t in st["topics"] if t["topic"] == "/usv_heading"][0]
+        assert heading["transport"] == "udp+tcp" and heading["messages"] >= 3, heading
+        target = [t for t in st["topics"] if t["topic"] == "/target"][0]
+        assert target["transport"] == "tcp", target  # reliable
 
 
 def test_renaming_direction_and_first_message():

@@ -43,6 +43,10 @@ struct RelayConfig {
   std::string listen_host = "127.0.0.1";
   int listen_port = 0;  // 0 = do not listen (-1 in tests: any free port)
   bool auth = true;     // HMAC-SHA256 on every frame; off only by explicit configuration
+  // Best-effort topics go in UDP datagrams (same frames, same session keys, own replay window; loss counted,
+  // never resent) when the encoded frame fits max_datagram_bytes; larger ones and latched repeats use TCP.
+  bool udp = true;
+  std::size_t max_datagram_bytes = 60000;
   std::string key;      // pre-shared key (required when auth)
   double heartbeat_period = 0.2, link_timeout = 1.0, backoff_min = 0.1, backoff_max = 2.0;
   double ack_delay = 0.5;  // acks trail delivery to ROS by this long (crash window covered by resends)
@@ -115,6 +119,9 @@ class Engine {
   void handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& out);
   void establish(Conn& c, double now);
   void sendFrame(Conn& c, FrameHeader h, const std::uint8_t* p, std::size_t n);
+  bool sendDatagram(Conn& c, FrameHeader h, const std::uint8_t* p, std::size_t n);
+  void onDatagrams(std::vector<Delivery>& out);
+  void handleData(Peer& p, Frame& f, std::vector<Delivery>& out);
   void sendHello(Conn& c);
   void sendAnnounce(Conn& c, std::size_t index);
   void pump(Peer& p);
@@ -128,7 +135,7 @@ class Engine {
   Counters& counters_;
   Authenticator psk_;
   std::uint64_t session_;
-  int listen_fd_ = -1, listen_port_ = 0, wake_fd_ = -1;
+  int listen_fd_ = -1, listen_port_ = 0, wake_fd_ = -1, udp_fd_ = -1, udp_port_ = 0;
   std::mutex mutex_;
   std::vector<std::unique_ptr<Peer>> peers_;
   std::vector<std::unique_ptr<Conn>> conns_;

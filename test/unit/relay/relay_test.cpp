@@ -1,5 +1,9 @@
-// Relay core: wire format, authentication, policies, and two real engines over loopback TCP.
+// Relay core: wire format, authentication, policies, and two real engines over loopback TCP and UDP.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <condition_variable>
@@ -325,6 +329,55 @@ TEST(RelayEngine, CompressedRateLimitedBestEffort) {
   EXPECT_GE(ca.get("rate_limited"), 88u);
   const auto st = auv.status()[0].topics[0];
   EXPECT_LT(st.bytes, got * big.size() / 20 + 2000);  // bytes on the wire: compressed
+}
+
+TEST(RelayEngine, BestEffortGoesByUdpLargeOnesByTcp) {
+  Counters cu, ca;
+  Pair::Received ru, ra;
+  Engine usv(Pair::config("usv", kKey, 0), Pair::callbacks(ru), cu);
+  usv.start();
+  auto cfg = Pair::config("auv", kKey, usv.listenPort());
+  cfg.topics[0].reliable = false;
+  cfg.max_datagram_bytes = 8000;
+  Engine auv(cfg, Pair::callbacks(ra), ca);
+  auv.start();
+  for (int i = 0; i < 100 && !auv.status()[0].up; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_TRUE(auv.status()[0].up);
+  auv.publish(0, kTarget, bytesOf("first"));  // by TCP, behind the announce: never lost
+  ASSERT_TRUE(Pair::waitFor(ru, 1, 2.0));
+  EXPECT_EQ(cu.get("udp_datagrams"), 0u);
+  for (int i = 0; i < 50; ++i) {
+    auv.publish(0, kTarget, bytesOf("udp" + std::to_string(i)));
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  const std::string big(20000, 'b');  // over max_datagram_bytes: TCP
+  auv.publish(0, kTarget, bytesOf(big));
+  ASSERT_TRUE(Pair::waitFor(ru, 52, 3.0)) << ru.msgs.size();
+  EXPECT_EQ(cu.get("udp_datagrams"), 50u);  // loopback loses nothing
+  EXPECT_EQ(cu.get("udp_lost"), 0u);
+  {
+    std::lock_guard<std::mutex> l(ru.m);
+    EXPECT_EQ(ru.msgs.front(), "first");
+    EXPECT_EQ(ru.msgs.back(), big);
+  }
+  EXPECT_EQ(auv.status()[0].topics[0].transport, "udp+tcp");
+  // Garbage datagrams at the UDP port (the TCP port number): dropped and counted, the link stays up.
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(usv.listenPort()));
+  inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+  std::mt19937 rng(7);
+  for (int i = 0; i < 200; ++i) {
+    std::vector<std::uint8_t> junk(1 + rng() % 3000);
+    for (auto& b : junk) b = static_cast<std::uint8_t>(rng());
+    sendto(fd, junk.data(), junk.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof(to));
+  }
+  close(fd);
+  auv.publish(0, kTarget, bytesOf("after the junk"));
+  ASSERT_TRUE(Pair::waitFor(ru, 53, 2.0));
+  EXPECT_EQ(cu.get("udp_unknown_source"), 200u);
+  EXPECT_TRUE(usv.status()[0].up);
 }
 
 TEST(RelayEngine, LatchedReachesARestartedReceiver) {
