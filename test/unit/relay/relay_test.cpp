@@ -231,6 +231,11 @@ class Pair {
     };
     return cb;
   }
+  // Best effort: nothing is queued while the link is down, so tests wait for it.
+  static bool waitUp(Engine& e) {
+    for (int i = 0; i < 100 && !e.status()[0].up; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    return e.status()[0].up;
+  }
   static bool waitFor(Received& r, std::size_t n, double s) {
     std::unique_lock<std::mutex> l(r.m);
     return r.cv.wait_for(l, std::chrono::duration<double>(s), [&] { return r.msgs.size() >= n; });
@@ -312,9 +317,7 @@ TEST(RelayEngine, CompressedRateLimitedBestEffort) {
   cfg.topics[0].rate_hz = 20.0;  // burst of 10, then 20 Hz
   Engine auv(cfg, Pair::callbacks(ra), ca);
   auv.start();
-  // best effort: nothing is queued while the link is down, so wait for it
-  for (int i = 0; i < 100 && !auv.status()[0].up; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_TRUE(auv.status()[0].up);
+  ASSERT_TRUE(Pair::waitUp(auv));
   auv.publish(0, kTarget, bytesOf("announce the type"));
   ASSERT_TRUE(Pair::waitFor(ru, 1, 2.0));
   std::this_thread::sleep_for(std::chrono::milliseconds(600));  // refill the bucket
@@ -337,12 +340,11 @@ TEST(RelayEngine, BestEffortGoesByUdpLargeOnesByTcp) {
   Engine usv(Pair::config("usv", kKey, 0), Pair::callbacks(ru), cu);
   usv.start();
   auto cfg = Pair::config("auv", kKey, usv.listenPort());
-  cfg.topics[0].reliable = false;
   cfg.max_datagram_bytes = 8000;
+  cfg.topics[0].reliable = false;
   Engine auv(cfg, Pair::callbacks(ra), ca);
   auv.start();
-  for (int i = 0; i < 100 && !auv.status()[0].up; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_TRUE(auv.status()[0].up);
+  ASSERT_TRUE(Pair::waitUp(auv));
   auv.publish(0, kTarget, bytesOf("first"));  // by TCP, behind the announce: never lost
   ASSERT_TRUE(Pair::waitFor(ru, 1, 2.0));
   EXPECT_EQ(cu.get("udp_datagrams"), 0u);
