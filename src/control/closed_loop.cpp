@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "offshore_gnc/sim/navigation.h"
 #include "offshore_gnc/sim/simulation.h"
 
 namespace offshore_gnc {
@@ -48,43 +49,49 @@ sim::Scenario scenarioOf(const ClosedLoopConfig& cfg) {
   return sc;
 }
 
-// Shared loop: `step(state, ref)` applies the controller and advances the plant one control period.
-template <typename Plant, typename Apply>
-ClosedLoopResult run(const ClosedLoopConfig& cfg, Plant& plant, Apply apply) {
+// Shared loop: `apply(state, ref)` applies the controller; `navigate(outputs)` turns the plant's sensor outputs of
+// one simulation step into a new navigation estimate (or nothing).
+template <typename Plant, typename Apply, typename Navigate>
+ClosedLoopResult run(const ClosedLoopConfig& cfg, Plant& plant, Apply apply, Navigate navigate) {
   ClosedLoopResult res;
   guidance::LosGuidance los(cfg.los);
   std::vector<Eigen::Vector3d> path = cfg.path;
+  std::vector<bool> detour;
   std::vector<guidance::SbbBox> boxes;
   if (!cfg.obstacles.empty()) {
     const auto plan = guidance::planSbb(cfg.path, cfg.start.head<2>(), cfg.obstacles, cfg.sbb);
     path = plan.path;
+    detour = plan.detour;
     boxes = plan.boxes;
     res.status = plan.status;
   }
   res.planned_path = path;
-  los.setPath(path);
+  los.setPath(path, false, detour);
   const int sub = std::max(1, static_cast<int>(std::lround(cfg.control_dt / plant.dt())));
   std::vector<double> xte;
   double finished_at = -1.0;
+  VehicleState estimate = plant.state();  // until the first navigation output (the vehicle starts at rest)
   for (double t = 0.0; t < cfg.max_time; t += cfg.control_dt) {
-    const VehicleState s = plant.state();  // velocity over ground, as GPS / DVL navigation reports it
+    const VehicleState truth = plant.state();  // velocity over ground, as GPS / DVL navigation reports it
+    const VehicleState s = cfg.navigation ? estimate : truth;
     const guidance::LosOutput o = los.update(s, cfg.control_dt);
     if (o.mode == guidance::Mode::kFollowPath) xte.push_back(o.cross_track_error);
     if (o.mode == guidance::Mode::kStationKeeping && finished_at < 0.0) finished_at = t;
-    res.track.push_back(s.position);
+    res.track.push_back(truth.position);
     for (const auto& ob : cfg.obstacles)
       res.min_clearance = std::min(
-          res.min_clearance, (s.position.head<2>() - ob.origin).norm() - std::max(ob.length, ob.width) / 2.0);
+          res.min_clearance, (truth.position.head<2>() - ob.origin).norm() - std::max(ob.length, ob.width) / 2.0);
     for (const auto& b : boxes)
-      if (b.cuts_path && b.contains(s.position.head<2>())) ++res.inside_box_samples;
+      if (b.cuts_path && b.contains(truth.position.head<2>())) ++res.inside_box_samples;
     if (!apply(s, toReference(o))) ++res.nan_outputs;
-    for (int i = 0; i < sub; ++i) plant.step();
-    // Station keeping: the largest distance from the last waypoint once settled (30 s to 90 s after the end).
+    for (int i = 0; i < sub; ++i)
+      if (auto e = navigate(plant.step())) estimate = *e;
+    // Station keeping: the largest distance from the last waypoint once settled (30 s to hold_until after the end).
     if (finished_at >= 0.0 && t - finished_at >= 30.0) {
       const Eigen::Vector3d d = plant.state().position - path.back();
       res.hold_error = std::max(res.hold_error, std::hypot(d.x(), d.y()));
     }
-    if (finished_at >= 0.0 && t - finished_at >= 90.0) break;
+    if (finished_at >= 0.0 && t - finished_at >= cfg.hold_until) break;
   }
   res.finished = finished_at >= 0.0;
   res.time = finished_at;
@@ -99,16 +106,28 @@ ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const UsvControlParams& ctr
   sim::UsvSimulation::Config sc;
   sc.seed = cfg.seed;
   sc.lidar_on = false;
-  sim::UsvSimulation plant(scenarioOf(cfg), sc);
+  const sim::Scenario scenario = scenarioOf(cfg);
+  sim::UsvSimulation plant(scenario, sc);
   UsvControlParams p = ctrl_p;
   p.dt = cfg.control_dt;
   UsvController ctrl(p);
-  return run(cfg, plant, [&](const VehicleState& s, const Reference& r) {
-    const JoystickOut j = ctrl.update(s, r);
-    const bool finite = std::isfinite(j.surge) && std::isfinite(j.sway) && std::isfinite(j.yaw);
-    plant.setCommand(models::UsvCommand{j.surge, j.sway, j.yaw});
-    return finite;
-  });
+  sim::GpsNavigatorConfig nc;  // as the GpsNavigation nodelet: the antenna's lever arm removed
+  nc.antenna = sc.gps.antenna;
+  sim::GpsNavigator nav(scenario.origin, nc);
+  return run(
+      cfg, plant,
+      [&](const VehicleState& s, const Reference& r) {
+        const JoystickOut j = ctrl.update(s, r);
+        const bool finite = std::isfinite(j.surge) && std::isfinite(j.sway) && std::isfinite(j.yaw);
+        plant.setCommand(models::UsvCommand{j.surge, j.sway, j.yaw});
+        return finite;
+      },
+      [&](const sim::UsvSimulation::Outputs& out) -> std::optional<VehicleState> {
+        if (!out.gps) return std::nullopt;
+        nav.heading(out.gps->t, out.gps->heading);
+        nav.velocity(out.gps->t, out.gps->velocity_ned, out.gps->rate_of_turn);
+        return nav.fix(out.gps->t, out.gps->fix);
+      });
 }
 
 ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg, const Girona500ControlParams& ctrl_p) {
@@ -119,13 +138,16 @@ ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg, const Girona500Contro
   Girona500ControlParams p = ctrl_p;
   p.dt = cfg.control_dt;
   Girona500Controller ctrl(p);
-  return run(cfg, plant, [&](const VehicleState& s, const Reference& r) {
-    const Girona500Out out = ctrl.update(s, r);
-    const auto& sp = out.alloc.setpoint;
-    const bool finite = sp.allFinite();
-    plant.setThrusters(std::vector<double>(sp.data(), sp.data() + sp.size()));
-    return finite;
-  });
+  return run(
+      cfg, plant,
+      [&](const VehicleState& s, const Reference& r) {
+        const Girona500Out out = ctrl.update(s, r);
+        const auto& sp = out.alloc.setpoint;
+        const bool finite = sp.allFinite();
+        plant.setThrusters(std::vector<double>(sp.data(), sp.data() + sp.size()));
+        return finite;
+      },
+      [](const sim::AuvSimulation::Outputs& out) { return out.odom; });
 }
 
 }  // namespace control

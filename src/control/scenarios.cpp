@@ -35,7 +35,28 @@ ClosedLoopConfig usvBuoy(bool adaptive_crab) {
   c.sbb.safety_y = 6.0;
   c.sbb.corridor = 3.0;  // half beam (1.5 m) + tracking error at the corners
   c.sbb.approach = 25.0;  // the 8 m waterjet boat needs a run-in to the rear corner
-  c.los.acceptance_radius = 4.0;  // detour corners are close together: a tight circle, the passed rule covers misses
+  c.los.detour_radius = 2.0;  // as config/guidance/usv.yaml: box corners are reached, route waypoints on R = 16 m
+  return c;
+}
+
+ClosedLoopConfig usvNearBuoy(bool adaptive_crab) {
+  ClosedLoopConfig c = usvBuoy(adaptive_crab);
+  c.path = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(40, 0, 0), Eigen::Vector3d(80, 0, 0), Eigen::Vector3d(120, 0, 0)};
+  c.obstacles[0].origin = Eigen::Vector2d(25.0, 0.5);
+  c.obstacles[0].length = c.obstacles[0].width = 1.2;
+  return c;
+}
+
+ClosedLoopConfig usvHoldFromRest() {
+  ClosedLoopConfig c = usvStraight(true);
+  c.path = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0)};
+  c.hold_until = 300.0;  // as long as the USV waits for the AUV in the default mission
+  return c;
+}
+
+ClosedLoopConfig usvShortTransit() {
+  ClosedLoopConfig c = usvStraight(true);
+  c.path = guidance::straightLine(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(42, -38, 0), 10.0);
   return c;
 }
 

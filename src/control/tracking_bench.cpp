@@ -1,5 +1,7 @@
 // `./scripts/bench tracking`: the closed-loop scenarios (0.2 m/s cross current) with and without crab-angle
-// compensation; cross-track RMSE / SD / MAE as thesis Tables 4.4 and 5.1. Last line: one JSON object.
+// compensation; cross-track RMSE / SD / MAE as thesis Tables 4.4 and 5.1, measured like the thesis on the
+// navigation estimate (simulated GPS-compass / INS), plus the same runs on the true state (controller alone).
+// Last line: one JSON object.
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -23,18 +25,34 @@ int main(int argc, char** argv) {
   const auto usv = runUsv(scenarios::usvStraight(true));
   const auto usv_nc = runUsv(scenarios::usvStraight(false));
   const auto buoy = runUsv(scenarios::usvBuoy(true));
+  const auto near = runUsv(scenarios::usvNearBuoy(true));
+  const auto hold = runUsv(scenarios::usvHoldFromRest());
+  const auto transit = runUsv(scenarios::usvShortTransit());
   const auto auv = runGirona500(scenarios::auvCoverage(true));
   Girona500ControlParams no_cross;
   no_cross.cross_ki = 0.0;
   const auto auv_nc = runGirona500(scenarios::auvCoverage(false), no_cross);
+  auto truth_usv = scenarios::usvStraight(true);
+  truth_usv.navigation = false;
+  const auto usv_t = runUsv(truth_usv);
+  auto truth_auv = scenarios::auvCoverage(true);
+  truth_auv.navigation = false;
+  const auto auv_t = runGirona500(truth_auv);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   line("usv straight (crab)", usv);
   line("usv straight (no crab)", usv_nc);
   line("usv buoy SBB (crab)", buoy);
   std::printf("%-28s min clearance %.2f m, samples inside the box %zu\n", "", buoy.min_clearance,
               buoy.inside_box_samples);
+  line("usv buoy 25 m ahead (rostest)", near);
+  std::printf("%-28s min clearance %.2f m, samples inside the box %zu\n", "", near.min_clearance,
+              near.inside_box_samples);
+  line("usv hold from rest", hold);
+  line("usv short transit (mission)", transit);
   line("girona500 coverage (crab)", auv);
   line("girona500 coverage (no crab)", auv_nc);
+  line("usv straight, true state", usv_t);
+  line("girona500, true state", auv_t);
   std::printf("thesis: USV field test RMSE 1.55 m; Girona500 sea trial RMSE 0.2346 SD 0.2345 MAE 0.1525 (Table 4.4)\n");
   if (csv) {
     if (FILE* f = std::fopen(csv, "w")) {
@@ -49,8 +67,10 @@ int main(int argc, char** argv) {
       "{\"usv_rmse_m\": %.4f, \"usv_sd_m\": %.4f, \"usv_mae_m\": %.4f, \"usv_rmse_m_no_crab\": %.4f, "
       "\"usv_buoy_rmse_m\": %.4f, \"usv_min_clearance_m\": %.3f, \"usv_inside_box_samples\": %zu, "
       "\"auv_rmse_m\": %.4f, \"auv_sd_m\": %.4f, \"auv_mae_m\": %.4f, \"auv_rmse_m_no_crab\": %.4f, "
+      "\"usv_rmse_m_true_state\": %.4f, \"auv_rmse_m_true_state\": %.4f, \"usv_hold_m\": %.3f, \"usv_hold_from_rest_m\": %.3f, \"usv_short_transit_rmse_m\": %.4f, "
       "\"thesis_usv_rmse_m\": 1.55, \"thesis_auv_rmse_m\": 0.2346, \"wall_time_s\": %.3f}\n",
       usv.metrics.rmse, usv.metrics.sd, usv.metrics.mae, usv_nc.metrics.rmse, buoy.metrics.rmse, buoy.min_clearance,
-      buoy.inside_box_samples, auv.metrics.rmse, auv.metrics.sd, auv.metrics.mae, auv_nc.metrics.rmse, wall);
+      buoy.inside_box_samples, auv.metrics.rmse, auv.metrics.sd, auv.metrics.mae, auv_nc.metrics.rmse,
+      usv_t.metrics.rmse, auv_t.metrics.rmse, usv.hold_error, hold.hold_error, transit.metrics.rmse, wall);
   return 0;
 }

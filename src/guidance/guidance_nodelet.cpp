@@ -44,6 +44,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
       lp.acceptance_radius = p.number("los/acceptance_radius", auv ? 3.0 : 16.0, 0.01, 1000.0);
       lp.surge_speed = p.number("los/surge_speed", auv ? 0.3 : 1.5, 0.0, 20.0);
       lp.final_radius = p.number("los/final_radius", 0.0, 0.0, 1000.0);
+      lp.detour_radius = p.number("los/detour_radius", 0.0, 0.0, 1000.0);
       lp.approach_distance = p.number("los/approach_distance", 0.0, 0.0, 1e4);
       lp.approach_speed = p.number("los/approach_speed", 0.3, 0.0, 20.0);
       sbb_.safety_x = p.number("sbb/safety_x", 5.0, 0.0, 1000.0);
@@ -76,6 +77,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     c.kp = lp.kp, c.ki = lp.ki, c.integral_limit = lp.integral_limit, c.adaptive_crab = lp.adaptive_crab;
     c.crab_gain = lp.crab_gain, c.crab_limit = lp.crab_limit, c.acceptance_radius = lp.acceptance_radius;
     c.surge_speed = lp.surge_speed, c.final_radius = lp.final_radius, c.approach_distance = lp.approach_distance;
+    c.detour_radius = lp.detour_radius;
     c.safety_x = sbb_.safety_x, c.safety_y = sbb_.safety_y;
     c.corridor = sbb_.corridor, c.max_offset = sbb_.max_offset;
     reconfigure_->updateConfig(c);
@@ -103,6 +105,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     lp.kp = c.kp, lp.ki = c.ki, lp.integral_limit = c.integral_limit, lp.adaptive_crab = c.adaptive_crab;
     lp.crab_gain = c.crab_gain, lp.crab_limit = c.crab_limit, lp.acceptance_radius = c.acceptance_radius;
     lp.surge_speed = c.surge_speed, lp.final_radius = c.final_radius, lp.approach_distance = c.approach_distance;
+    lp.detour_radius = c.detour_radius;
     guidance::SbbParams sp = sbb_;
     sp.safety_x = c.safety_x, sp.safety_y = c.safety_y, sp.corridor = c.corridor, sp.max_offset = c.max_offset;
     try {
@@ -169,20 +172,22 @@ class GuidanceNodelet : public nodelet::Nodelet {
       plan.path = base_path_;
       plan.status = "path clear";
     } else {
-      plan = guidance::planSbb(base_path_, state_.position.head<2>(), obstacles_, sbb_);
+      plan = guidance::planSbb(base_path_, state_.position.head<2>(), obstacles_, sbb_, new_path_ ? kNoBoxes : boxes_);
       if (plan.blocked) NODELET_WARN_THROTTLE(5.0, "%s", plan.status.c_str());
     }
     // Re-set the LOS path only when it really changed (slowly moving obstacles), resuming on the nearest leg.
-    bool changed = new_path_ || plan.path.size() != planned_.size();
+    bool changed = new_path_ || plan.path.size() != planned_.size() || plan.detour != planned_detour_;
     for (std::size_t i = 0; !changed && i < plan.path.size(); ++i)
       changed = (plan.path[i] - planned_[i]).norm() > replan_distance_;
     if (changed) {
       planned_ = plan.path;
-      if (!los_->setPath(planned_, !new_path_))
+      planned_detour_ = plan.detour;
+      if (!los_->setPath(planned_, !new_path_, planned_detour_))
         NODELET_ERROR_THROTTLE(5.0, "path rejected (%zu waypoints): holding", base_path_.size());
       publishPlanned();
     }
     new_path_ = false;
+    boxes_ = plan.boxes;
     publishBoxes(plan);
   }
 
@@ -276,6 +281,9 @@ class GuidanceNodelet : public nodelet::Nodelet {
   std::unique_ptr<guidance::LosGuidance> los_;
   guidance::LosOutput last_;
   std::vector<V3> base_path_, planned_;
+  std::vector<bool> planned_detour_;
+  std::vector<guidance::SbbBox> boxes_;  // the last plan's: their sides are kept while safe
+  const std::vector<guidance::SbbBox> kNoBoxes;
   std::vector<guidance::SbbObstacle> obstacles_;
   VehicleState state_;
   ros::Time odom_time_, obstacles_time_;

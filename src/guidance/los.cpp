@@ -20,6 +20,7 @@ void LosParams::validate() const {
   requireRange("los/surge_speed", surge_speed, 0.0, 20.0);
   requireRange("los/min_leg_length", min_leg_length, 1e-6, 10.0);
   requireRange("los/final_radius", final_radius, 0.0, 1000.0);
+  requireRange("los/detour_radius", detour_radius, 0.0, 1000.0);
   requireRange("los/approach_distance", approach_distance, 0.0, 1e4);
   requireRange("los/approach_speed", approach_speed, 0.0, 20.0);
 }
@@ -43,26 +44,38 @@ void LosGuidance::setParams(const LosParams& p) {
 
 void LosGuidance::clear() {
   wp_.clear();
+  detour_.clear();
   path_error_.clear();
   leg_ = 1;
   finished_ = false;
   integral_ = 0.0;
 }
 
-bool LosGuidance::setPath(const std::vector<Eigen::Vector3d>& waypoints, bool resume) {
+bool LosGuidance::setPath(const std::vector<Eigen::Vector3d>& waypoints, bool resume,
+                          const std::vector<bool>& detour) {
   clear();
-  for (const auto& w : waypoints) {
+  if (!detour.empty() && detour.size() != waypoints.size()) {
+    counters_.increment("bad_path");
+    path_error_ = "path rejected: detour flags do not match the waypoints";
+    return false;
+  }
+  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+    const Eigen::Vector3d& w = waypoints[i];
+    const bool corner = !detour.empty() && detour[i];
     if (!w.allFinite()) {
       counters_.increment("bad_path");
       path_error_ = "path rejected: non-finite waypoint";
       wp_.clear();
+      detour_.clear();
       return false;
     }
     if (!wp_.empty() && (w - wp_.back()).norm() < p_.min_leg_length) {
       counters_.increment("duplicate_waypoints");  // merged, not an error
+      if (corner) detour_.back() = true;
       continue;
     }
     wp_.push_back(w);
+    detour_.push_back(corner);
   }
   if (wp_.empty()) {
     if (!waypoints.empty()) counters_.increment("bad_path");
@@ -73,6 +86,7 @@ bool LosGuidance::setPath(const std::vector<Eigen::Vector3d>& waypoints, bool re
     counters_.increment("bad_path");
     path_error_ = "path rejected: a single waypoint (or all duplicates) gives no leg to follow";
     wp_.clear();
+    detour_.clear();
     return false;
   }
   if (resume && have_pose_) {
@@ -145,7 +159,11 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
     // A purely vertical leg has no horizontal length: only the sphere switches it.
     const bool passed = leg_len > p_.min_leg_length && along >= leg_len;
     const bool last = leg_ + 1 >= wp_.size();
-    const double radius = last && p_.final_radius > 0.0 ? p_.final_radius : p_.acceptance_radius;
+    double radius = p_.acceptance_radius;
+    if (last && p_.final_radius > 0.0)
+      radius = p_.final_radius;
+    else if (detour_[leg_] && p_.detour_radius > 0.0)
+      radius = p_.detour_radius;
     if (dist > radius && !passed) break;
     if (leg_ + 1 >= wp_.size()) {
       finished_ = true;

@@ -100,13 +100,14 @@ SbbBox makeBox(const SbbObstacle& o, double path_angle, const SbbParams& p) {
 }
 
 SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d& vehicle,
-                const std::vector<SbbObstacle>& obstacles, const SbbParams& p) {
+                const std::vector<SbbObstacle>& obstacles, const SbbParams& p, const std::vector<SbbBox>& previous) {
   SbbPlan out;
   std::vector<SbbObstacle> obs;
   for (const auto& o : obstacles)
     if (o.origin.allFinite() && std::isfinite(o.length) && std::isfinite(o.width)) obs.push_back(o);
   if (path.size() < 2 || !vehicle.allFinite()) {
     out.path = path;
+    out.detour.assign(path.size(), false);
     out.status = path.size() < 2 ? "path too short for obstacle avoidance" : "no vehicle position";
     return out;
   }
@@ -149,6 +150,12 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
       // The side nearer to the vehicle first (eq. 4.7); the other if it does not fit the navigable corridor.
       const double port = r.e_lo - p.corridor, stbd = r.e_hi + p.corridor;
       SbbSide first = std::abs(veh.y() - port) <= std::abs(veh.y() - stbd) ? SbbSide::kPort : SbbSide::kStarboard;
+      for (const auto& b : previous) {
+        const bool same = std::any_of(b.ids.begin(), b.ids.end(), [&](std::uint32_t id) {
+          return std::find(r.ids.begin(), r.ids.end(), id) != r.ids.end();
+        });
+        if (same && b.cuts_path && (b.side == SbbSide::kPort || b.side == SbbSide::kStarboard)) first = b.side;
+      }
       SbbSide chosen = SbbSide::kBlocked;
       for (SbbSide side : {first, first == SbbSide::kPort ? SbbSide::kStarboard : SbbSide::kPort}) {
         const double e = side == SbbSide::kPort ? port : stbd;
@@ -167,7 +174,10 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
         out.modified = true;
         const double s_stop = std::max(0.0, r.s_lo - p.stop_margin);
         const Eigen::Vector2d stop = f.toNed(s_stop, 0.0);
-        if ((stop - out.path.back().head<2>()).norm() > 1e-3) out.path.emplace_back(stop.x(), stop.y(), depth);
+        if ((stop - out.path.back().head<2>()).norm() > 1e-3) {
+          out.path.emplace_back(stop.x(), stop.y(), depth);
+          is_detour.push_back(false);
+        }
         out.status = "blocked: no safe side around the safety box of obstacle(s)";
         for (auto id : r.ids) out.status += " " + std::to_string(id);
         out.status += "; path ends before it";
@@ -195,6 +205,7 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
       continue;
     }
     kept.push_back(out.path[i]);
+    out.detour.push_back(is_detour[i]);
   }
   out.path = kept;
   for (std::size_t i = 0; i < obs.size(); ++i) {

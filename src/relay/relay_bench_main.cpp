@@ -79,11 +79,12 @@ int main(int argc, char** argv) {
       [&](const sensor_msgs::PointCloud2::ConstPtr& m) {
         const double now = ros::WallTime::now().toSec();
         if (received == 0) first = now;
+        ++received;
+        if (static_cast<int>(m->header.seq) < warmup) return;  // warm-up: neither latency nor throughput
         if (lat.empty()) t_first = now;
         t_last = now;
         bytes += static_cast<double>(m->data.size());
-        ++received;
-        if (static_cast<int>(m->header.seq) >= warmup) lat.push_back((now - m->header.stamp.toSec()) * 1e3);
+        lat.push_back((now - m->header.stamp.toSec()) * 1e3);
       },
       ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
   const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(timeout);

@@ -1,7 +1,8 @@
-// GpsNavigation: /usv_gps + /usv_heading -> /usv/odom and TF map -> usv/base_link (geo::LocalNed), the USV's
+// GpsNavigation: /usv_gps + /usv_heading (+ /usv/gps/velocity when the receiver reports velocity) -> /usv/odom and TF map -> usv/base_link (geo::LocalNed), the USV's
 // navigation in simulation and on hardware alike (the GPS-compass is the USV's position and heading source).
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/QuaternionStamped.h>
+#include <geometry_msgs/TwistStamped.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/NavSatFix.h>
@@ -31,6 +32,9 @@ class GpsNavigationNodelet : public nodelet::Nodelet {
       cfg.antenna = {a[0], a[1], a[2]};
       cfg.heading_timeout = p.number("heading_timeout", cfg.heading_timeout, 0.01, 60);
       cfg.velocity_filter = p.number("velocity_filter", cfg.velocity_filter, 0, 60);
+      // angular.z of the velocity message is the receiver's rate of turn (simulator); false for receivers that
+      // report none (NMEA 2000 COG/SOG through the CAN gateway): the rate then comes from differenced headings
+      use_rate_of_turn_ = p.flag("use_rate_of_turn", true);
       base_frame_ = p.text("base_frame", "usv/base_link");
       world_frame_ = p.text("world_frame", "map");
       nav_ = std::make_unique<sim::GpsNavigator>(o, cfg);
@@ -41,12 +45,13 @@ class GpsNavigationNodelet : public nodelet::Nodelet {
     odom_pub_ = nh.advertise<nav_msgs::Odometry>("/usv/odom", 10);
     heading_sub_ = nh.subscribe("/usv_heading", 10, &GpsNavigationNodelet::onHeading, this);
     gps_sub_ = nh.subscribe("/usv_gps", 10, &GpsNavigationNodelet::onFix, this);
+    vel_sub_ = nh.subscribe("/usv/gps/velocity", 10, &GpsNavigationNodelet::onVelocity, this);
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("gps_navigation");
     updater_->add("navigation", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
       s.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
       std::lock_guard<std::mutex> l(mutex_);
-      ros_util::addCounters(s, nav_->counters(), {"bad_fix", "bad_heading", "fix_without_heading"});
+      ros_util::addCounters(s, nav_->counters(), {"bad_fix", "bad_heading", "bad_velocity", "fix_without_heading", "stale_fix"});
     });
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
   }
@@ -62,6 +67,14 @@ class GpsNavigationNodelet : public nodelet::Nodelet {
     std::lock_guard<std::mutex> l(mutex_);
     if (!nav_->heading(m->header.stamp.toSec(), geo::enuYawToNed(yaw_enu)))
       NODELET_ERROR_THROTTLE(1.0, "rejected /usv_heading: not a finite, non-zero quaternion");
+  }
+
+  // ENU linear velocity over ground, angular.z counter-clockwise (the CAN gateway's convention)
+  void onVelocity(const geometry_msgs::TwistStamped::ConstPtr& m) {
+    std::lock_guard<std::mutex> l(mutex_);
+    const double rate = use_rate_of_turn_ ? -m->twist.angular.z : NAN;
+    if (!nav_->velocity(m->header.stamp.toSec(), {m->twist.linear.y, m->twist.linear.x}, rate))
+      NODELET_ERROR_THROTTLE(1.0, "rejected /usv/gps/velocity: not finite");
   }
 
   void onFix(const sensor_msgs::NavSatFix::ConstPtr& m) {
@@ -91,8 +104,9 @@ class GpsNavigationNodelet : public nodelet::Nodelet {
   std::mutex mutex_;
   std::unique_ptr<sim::GpsNavigator> nav_;
   std::string base_frame_, world_frame_;
+  bool use_rate_of_turn_ = true;
   ros::Publisher odom_pub_;
-  ros::Subscriber gps_sub_, heading_sub_;
+  ros::Subscriber gps_sub_, heading_sub_, vel_sub_;
   tf2_ros::TransformBroadcaster tf_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::WallTimer diag_timer_;

@@ -1,4 +1,5 @@
-// GPS-compass navigation: pose from the fix and heading, velocity by filtered differences of fixes.
+// GPS-compass navigation: pose from the fix and heading; velocity from the receiver's Doppler velocity, or by
+// filtered differences of fixes when it reports none.
 #include "offshore_gnc/sim/navigation.h"
 
 #include <cmath>
@@ -27,6 +28,17 @@ bool GpsNavigator::heading(double t, double yaw) {
   return true;
 }
 
+bool GpsNavigator::velocity(double t, const Eigen::Vector2d& v_ned, double rate_of_turn) {
+  if (!std::isfinite(t) || !v_ned.allFinite() || std::isinf(rate_of_turn)) {
+    counters_.increment("bad_velocity");
+    return false;
+  }
+  velocity_t_ = t;
+  v_ned_ = v_ned;
+  rate_of_turn_ = rate_of_turn;
+  return true;
+}
+
 std::optional<VehicleState> GpsNavigator::fix(double t, const geo::LatLonAlt& p) {
   if (!std::isfinite(t) || !std::isfinite(p.lat_deg) || !std::isfinite(p.lon_deg) || std::abs(p.lat_deg) > 90 ||
       std::abs(p.lon_deg) > 180) {
@@ -46,15 +58,22 @@ std::optional<VehicleState> GpsNavigator::fix(double t, const geo::LatLonAlt& p)
   // the vessel's reference point is the antenna minus its lever arm; 3-DOF: on the surface
   s.position = {ant.x() - (c * cfg_.antenna.x() - sn * cfg_.antenna.y()),
                 ant.y() - (sn * cfg_.antenna.x() + c * cfg_.antenna.y()), 0.0};
-  if (last_ && t > last_->t) {
+  if (last_ && t <= last_->t) {
+    counters_.increment("stale_fix");
+    return std::nullopt;
+  }
+  if (std::abs(t - velocity_t_) <= cfg_.heading_timeout) {
+    // Doppler: the antenna's ground velocity in the body frame, minus the yaw rate acting on the lever arm
+    const double r = std::isfinite(rate_of_turn_) ? rate_of_turn_ : yaw_rate_;
+    s.velocity.x() = c * v_ned_.x() + sn * v_ned_.y() + r * cfg_.antenna.y();
+    s.velocity.y() = -sn * v_ned_.x() + c * v_ned_.y() - r * cfg_.antenna.x();
+    s.angular_rate.z() = r;
+  } else if (last_) {
     const double dt = t - last_->t;
     const Eigen::Vector2d v_ned = (s.position - last_->position).head<2>() / dt;
     const Eigen::Vector2d v_body(c * v_ned.x() + sn * v_ned.y(), -sn * v_ned.x() + c * v_ned.y());
     const double a = cfg_.velocity_filter > 0 ? 1.0 - std::exp(-dt / cfg_.velocity_filter) : 1.0;
     s.velocity.head<2>() = last_->velocity.head<2>() + a * (v_body - last_->velocity.head<2>());
-  } else if (last_ && t <= last_->t) {
-    counters_.increment("stale_fix");
-    return std::nullopt;
   }
   last_ = s;
   return s;

@@ -32,22 +32,46 @@ GpsCompass::GpsCompass(const GpsCompassConfig& cfg, const geo::LocalNed& frame, 
     : cfg_(cfg), frame_(frame), rng_(seed) {
   requireRate("gps/rate", cfg.rate_hz);
   requireRange("gps/position_sigma", cfg.position_sigma, 0, 100);
+  requireRange("gps/position_tau", cfg.position_tau, 0, 1e5);
+  requireRange("gps/position_white_sigma", cfg.position_white_sigma, 0, 100);
+  requireRange("gps/velocity_sigma", cfg.velocity_sigma, 0, 10);
+  requireRange("gps/rate_sigma", cfg.rate_sigma, 0, 1);
   requireRange("gps/altitude_sigma", cfg.altitude_sigma, 0, 100);
   requireRange("gps/heading_sigma", cfg.heading_sigma, 0, 1);
 }
 
 GpsCompassReading GpsCompass::measure(const VehicleState& s) {
+  // Slow error: exact discretisation of a first-order Gauss-Markov process over the time since the last fix
+  // (stationary from the first fix on, so its 1-sigma is position_sigma at every time).
+  if (!started_) {
+    slow_error_ = {cfg_.position_sigma * n_(rng_), cfg_.position_sigma * n_(rng_)};
+    started_ = true;
+  } else if (cfg_.position_tau <= 0.0) {
+    slow_error_ = {cfg_.position_sigma * n_(rng_), cfg_.position_sigma * n_(rng_)};
+  } else {
+    const double phi = std::exp(-std::max(0.0, s.t - last_t_) / cfg_.position_tau);
+    const double q = cfg_.position_sigma * std::sqrt(1.0 - phi * phi);
+    slow_error_ = phi * slow_error_ + Eigen::Vector2d(q * n_(rng_), q * n_(rng_));
+  }
+  last_t_ = s.t;
   const Eigen::Vector2d off = rotate2(s.yaw, cfg_.antenna);
   Eigen::Vector3d p(s.position.x() + off.x(), s.position.y() + off.y(), s.position.z() + cfg_.antenna.z());
-  p.x() += cfg_.position_sigma * n_(rng_);
-  p.y() += cfg_.position_sigma * n_(rng_);
+  p.x() += slow_error_.x() + cfg_.position_white_sigma * n_(rng_);
+  p.y() += slow_error_.y() + cfg_.position_white_sigma * n_(rng_);
   p.z() += cfg_.altitude_sigma * n_(rng_);
   GpsCompassReading r;
   r.t = s.t;
   r.fix = frame_.toGeodetic(p);
   r.heading = wrapAngle(s.yaw + cfg_.heading_sigma * n_(rng_));
-  r.position_sigma = cfg_.position_sigma;
+  // antenna velocity over ground: the vessel's plus the yaw rate acting on the lever arm (r x antenna)
+  const double yaw_rate = s.angular_rate.z();
+  const Eigen::Vector2d v_body(s.velocity.x() - yaw_rate * cfg_.antenna.y(), s.velocity.y() + yaw_rate * cfg_.antenna.x());
+  r.velocity_ned = rotate2(s.yaw, Eigen::Vector3d(v_body.x(), v_body.y(), 0.0)) +
+                   Eigen::Vector2d(cfg_.velocity_sigma * n_(rng_), cfg_.velocity_sigma * n_(rng_));
+  r.rate_of_turn = yaw_rate + cfg_.rate_sigma * n_(rng_);
+  r.position_sigma = std::hypot(cfg_.position_sigma, cfg_.position_white_sigma);
   r.heading_sigma = cfg_.heading_sigma;
+  r.velocity_sigma = cfg_.velocity_sigma;
   return r;
 }
 

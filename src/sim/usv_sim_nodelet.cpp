@@ -3,6 +3,7 @@
 // the scenario's map grid; takes /usv/joystick_cmd, with /usv/manual_cmd taking priority while it is fresh.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/QuaternionStamped.h>
+#include <geometry_msgs/TwistStamped.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
@@ -44,6 +45,10 @@ class UsvSimNodelet : public nodelet::Nodelet {
       cfg.lidar.mount = {lm[0], lm[1], lm[2]};
       cfg.gps.rate_hz = p.number("gps/rate", cfg.gps.rate_hz, 0.1, 100);
       cfg.gps.position_sigma = p.number("gps/position_sigma", cfg.gps.position_sigma, 0, 100);
+      cfg.gps.position_tau = p.number("gps/position_tau", cfg.gps.position_tau, 0, 1e5);
+      cfg.gps.position_white_sigma = p.number("gps/position_white_sigma", cfg.gps.position_white_sigma, 0, 100);
+      cfg.gps.velocity_sigma = p.number("gps/velocity_sigma", cfg.gps.velocity_sigma, 0, 10);
+      cfg.gps.rate_sigma = deg2rad(p.number("gps/rate_sigma_deg", rad2deg(cfg.gps.rate_sigma), 0, 45));
       cfg.gps.heading_sigma = deg2rad(p.number("gps/heading_sigma_deg", rad2deg(cfg.gps.heading_sigma), 0, 45));
       const auto gm = p.numbers("gps/antenna", {0.0, 0.0, -2.5}, 3, -50, 50);
       cfg.gps.antenna = {gm[0], gm[1], gm[2]};
@@ -65,6 +70,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
     truth_pub_ = nh.advertise<nav_msgs::Odometry>("/usv/ground_truth/odom", 10);
     gps_pub_ = nh.advertise<sensor_msgs::NavSatFix>("/usv_gps", 10);
     heading_pub_ = nh.advertise<geometry_msgs::QuaternionStamped>("/usv_heading", 10);
+    vel_pub_ = nh.advertise<geometry_msgs::TwistStamped>("/usv/gps/velocity", 10);
     lidar_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/usv/lidar/points", 2);
     map_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("/usv/map", 1, true);
     jet_pub_ = nh.advertise<WaterjetStatus>("/usv/waterjet/status", 10);
@@ -121,6 +127,20 @@ class UsvSimNodelet : public nodelet::Nodelet {
     const ros::Time stamp(s.t);
     if (++truth_count_ % 5 == 0) truth_pub_.publish(sim_ros::toOdometry(s, "map", base_frame_));  // 20 Hz
     if (out.gps) {
+      // heading and velocity first: the navigation pairs each fix with the latest of both
+      geometry_msgs::QuaternionStamped h;
+      h.header.stamp = stamp;
+      h.header.frame_id = "map";
+      h.quaternion = sim_ros::enuQuaternion(0.0, 0.0, out.gps->heading);
+      heading_pub_.publish(h);
+      // as the CAN gateway's: ENU ground velocity (Doppler SOG/COG); angular.z = rate of turn, counter-clockwise
+      geometry_msgs::TwistStamped v;
+      v.header.stamp = stamp;
+      v.header.frame_id = "map";
+      v.twist.linear.x = out.gps->velocity_ned.y();
+      v.twist.linear.y = out.gps->velocity_ned.x();
+      v.twist.angular.z = -out.gps->rate_of_turn;
+      vel_pub_.publish(v);
       sensor_msgs::NavSatFix f;
       f.header.stamp = stamp;
       f.header.frame_id = "usv/gps";
@@ -129,15 +149,10 @@ class UsvSimNodelet : public nodelet::Nodelet {
       f.latitude = out.gps->fix.lat_deg;
       f.longitude = out.gps->fix.lon_deg;
       f.altitude = out.gps->fix.alt_m;
-      const double v = out.gps->position_sigma * out.gps->position_sigma;
-      f.position_covariance = {v, 0, 0, 0, v, 0, 0, 0, 4 * v};
+      const double var = out.gps->position_sigma * out.gps->position_sigma;
+      f.position_covariance = {var, 0, 0, 0, var, 0, 0, 0, 4 * var};
       f.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
       gps_pub_.publish(f);
-      geometry_msgs::QuaternionStamped h;
-      h.header.stamp = stamp;
-      h.header.frame_id = "map";
-      h.quaternion = sim_ros::enuQuaternion(0.0, 0.0, out.gps->heading);
-      heading_pub_.publish(h);
     }
     if (out.gps) {  // the jets' state at the GPS rate (10 Hz), as the control units report it on the bus
       const auto& p = sim_->model().params();
@@ -203,7 +218,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
   std::string base_frame_, command_topic_;
   double manual_timeout_ = 1.0, last_manual_ = -1e9;
   unsigned long truth_count_ = 0;
-  ros::Publisher jet_pub_, truth_pub_, gps_pub_, heading_pub_, lidar_pub_, map_pub_;
+  ros::Publisher jet_pub_, truth_pub_, gps_pub_, heading_pub_, vel_pub_, lidar_pub_, map_pub_;
   ros::Subscriber auto_sub_, manual_sub_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;

@@ -26,6 +26,10 @@ struct ClosedLoopConfig {
   double max_time = 600.0;                           // [s]
   double control_dt = 0.1;                           // [s]
   std::uint64_t seed = 1;
+  // true: guidance and control see the navigation estimate from the simulated sensors, as on the vehicle (USV:
+  // GPS-compass -> sim::GpsNavigator; AUV: the INS estimate); false: the true state (isolates the controller).
+  bool navigation = true;
+  double hold_until = 90.0;  // station keeping is measured from 30 s after the end of the path to this [s]
 };
 
 struct ClosedLoopResult {
@@ -35,8 +39,8 @@ struct ClosedLoopResult {
   double min_clearance = 1e9;          // closest approach to an obstacle's edge [m]
   std::size_t inside_box_samples = 0;  // samples inside a safety box (must be 0)
   std::size_t nan_outputs = 0;         // actuator outputs that were not finite (must be 0)
-  double hold_error = 0.0;             // largest distance to the last waypoint 30-90 s into station keeping [m]
-  std::vector<Eigen::Vector3d> track;  // positions at the control rate
+  double hold_error = 0.0;             // largest distance to the last waypoint 30 s to hold_until into station keeping [m]
+  std::vector<Eigen::Vector3d> track;  // true positions at the control rate
   std::vector<Eigen::Vector3d> planned_path;
   std::string status;
 };

@@ -31,6 +31,10 @@ struct LosParams {
   // within final_radius (0: acceptance_radius, as the other waypoints) or when passed. With R = 2 L_USV = 16 m
   // and waypoints every 10 m, the path otherwise ended up to 16 m short of the target.
   double final_radius = 0.0;       // [m]
+  // Safety-box corners (SBB detour waypoints) are 10-20 m apart: switching them on the 16 m circle cut the
+  // corners (cross-track up to 10 m on the simulator). They are reached within detour_radius instead
+  // (0: acceptance_radius).
+  double detour_radius = 0.0;      // [m]
   double approach_distance = 0.0;  // slow down over this distance to go to the last waypoint (0: no slowdown) [m]
   double approach_speed = 0.3;     // surge reference at the last waypoint when slowing down [m/s]
 
@@ -64,7 +68,9 @@ class LosGuidance {
   // New path (NED waypoints). Duplicates are merged; non-finite waypoints reject the path (hold). When
   // `resume` is set and a vehicle pose is known, the active leg is the one nearest to the vehicle (replanning
   // with SBB waypoints must not send the vehicle back to the start). Returns false when the path is unusable.
-  bool setPath(const std::vector<Eigen::Vector3d>& waypoints, bool resume = false);
+  // `detour` (empty or parallel to `waypoints`) marks safety-box corners, switched on detour_radius.
+  bool setPath(const std::vector<Eigen::Vector3d>& waypoints, bool resume = false,
+               const std::vector<bool>& detour = {});
   const std::vector<Eigen::Vector3d>& path() const { return wp_; }
   void clear();
 
@@ -80,6 +86,7 @@ class LosGuidance {
 
   LosParams p_;
   std::vector<Eigen::Vector3d> wp_;
+  std::vector<bool> detour_;  // parallel to wp_
   std::size_t leg_ = 1;
   double integral_ = 0.0;
   double beta_hat_ = 0.0;

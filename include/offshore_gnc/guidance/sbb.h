@@ -47,6 +47,7 @@ struct SbbBox {
 
 struct SbbPlan {
   std::vector<Eigen::Vector3d> path;  // the path to follow, detour waypoints inserted
+  std::vector<bool> detour;           // parallel to path: a safety-box corner (LosGuidance::setPath)
   std::vector<SbbBox> boxes;
   bool blocked = false;
   bool modified = false;              // at least one detour inserted or waypoint dropped
@@ -57,9 +58,12 @@ struct SbbPlan {
 // is unknown (LiDAR extents), so the larger extent is used on both axes.
 SbbBox makeBox(const SbbObstacle& o, double path_angle, const SbbParams& p);
 
-// Plans around `obstacles` along `path`; `vehicle` (NED) decides the closer side (eq. 4.7).
+// Plans around `obstacles` along `path`; `vehicle` (NED) decides the closer side (eq. 4.7). When replanning,
+// `previous` (the last plan's boxes) keeps the side already chosen for an obstacle while it is still safe: a boat
+// near the obstacle's centre line, drifting in the current, otherwise flips its detour from side to side.
 SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d& vehicle,
-                const std::vector<SbbObstacle>& obstacles, const SbbParams& p);
+                const std::vector<SbbObstacle>& obstacles, const SbbParams& p,
+                const std::vector<SbbBox>& previous = {});
 
 }  // namespace guidance
 }  // namespace offshore_gnc

@@ -15,18 +15,28 @@ namespace offshore_gnc {
 namespace sim {
 
 // ---------------------------------------------------------------- GPS-compass (USV)
+// An SBAS GPS-compass (e.g. a Hemisphere Vector): its position error is mostly slow (ionosphere, multipath) with
+// a little receiver jitter on top, so it is a first-order Gauss-Markov process plus white noise, not white noise
+// alone (white 0.3 m at 10 Hz would make any speed from differenced fixes useless). Like the real receiver it also
+// reports Doppler speed over ground and the rate of turn of its gyro, which the navigation uses directly.
 struct GpsCompassConfig {
   double rate_hz = 10.0;
-  double position_sigma = 0.3;    // horizontal 1-sigma [m] (SBAS-class dual-antenna GPS-compass)
-  double altitude_sigma = 0.5;    // [m]
+  double position_sigma = 0.3;          // slow horizontal error, 1-sigma [m]
+  double position_tau = 60.0;           // its correlation time [s]; 0 makes it white
+  double position_white_sigma = 0.02;   // receiver jitter per fix [m]
+  double altitude_sigma = 0.5;          // [m]
   double heading_sigma = deg2rad(0.2);  // [rad]
+  double velocity_sigma = 0.05;         // Doppler speed over ground, per axis [m/s]
+  double rate_sigma = deg2rad(0.3);     // rate of turn [rad/s]
   Eigen::Vector3d antenna{0, 0, -2.5};  // antenna in body FRD [m]
 };
 struct GpsCompassReading {
   double t;
   geo::LatLonAlt fix;
-  double heading;  // NED yaw of the vessel [rad], wrapped to (-pi, pi]
-  double position_sigma, heading_sigma;
+  double heading;                // NED yaw of the vessel [rad], wrapped to (-pi, pi]
+  Eigen::Vector2d velocity_ned;  // the antenna's velocity over ground, NED [m/s]
+  double rate_of_turn;           // NED yaw rate [rad/s]
+  double position_sigma, heading_sigma, velocity_sigma;
 };
 class GpsCompass {
  public:
@@ -38,6 +48,9 @@ class GpsCompass {
   GpsCompassConfig cfg_;
   geo::LocalNed frame_;
   std::mt19937_64 rng_;
+  Eigen::Vector2d slow_error_ = Eigen::Vector2d::Zero();  // the Gauss-Markov part of the position error
+  double last_t_ = 0.0;
+  bool started_ = false;
   std::normal_distribution<double> n_{0.0, 1.0};
 };
 

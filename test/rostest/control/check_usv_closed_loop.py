@@ -68,15 +68,18 @@ class UsvClosedLoop(unittest.TestCase):
         clearance = min(math.hypot(o.pose.pose.position.y - 25.0, o.pose.pose.position.x - 0.5) - 0.6
                         for o in self.truth)
         rospy.loginfo("samples inside the safety box: %d, closest approach to the buoy %.2f m", inside_n, clearance)
-        # The buoy is 25 m ahead of the start (the boat starts at rest): the run-in may clip the box's safety
-        # margin; the hard requirement here is no contact (half beam 1.5 m + 1 m).
+        # Never inside the safety box, although the buoy is only 25 m ahead of a boat at rest (detour corners are
+        # reached within los/detour_radius, not cut by the 16 m circle; the side chosen is kept while drifting).
+        self.assertEqual(inside_n, 0)
         self.assertGreater(clearance, 2.5)
         for j in self.joy:
             self.assertTrue(all(math.isfinite(v) for v in (j.surge, j.sway, j.yaw)))
         xte = [s.cross_track_error for s in self.status if s.mode == GuidanceStatus.MODE_FOLLOW_PATH]
         rmse = math.sqrt(sum(e * e for e in xte) / len(xte))
         rospy.loginfo("closed loop on the simulator: %d samples, cross-track RMSE %.2f m", len(xte), rmse)
-        self.assertLess(rmse, 8.0)  # detour corners close to the start dominate; the bench measures tracking
+        # 3.0-3.1 m here; the ROS-free loop on the same route (bench tracking, "usv buoy 25 m ahead") 2.7 m: the
+        # waterjet boat overshoots the detour corners. The straight-line goal is measured by the bench.
+        self.assertLess(rmse, 4.5)
 
 
 if __name__ == "__main__":

@@ -91,6 +91,27 @@ TEST(Los, CircleOfAcceptanceSwitches) {
   EXPECT_EQ(g.update(at(46, 2), 0.1).active_leg, 2u);  // 4.5 m: inside the circle
 }
 
+TEST(Los, SafetyBoxCornersUseTheDetourRadius) {
+  LosParams p = plain();
+  p.acceptance_radius = 16.0;
+  p.detour_radius = 2.0;
+  LosGuidance g(p);
+  // wp 1 is a safety-box corner: 4 m away is inside the 16 m circle but not within the detour radius
+  ASSERT_TRUE(g.setPath({V3(0, 0, 0), V3(20, -9, 0), V3(40, -9, 0), V3(80, 0, 0)}, false, {false, true, true, false}));
+  EXPECT_EQ(g.update(at(16.5, -7.3), 0.1).active_leg, 1u);
+  EXPECT_EQ(g.update(at(18.5, -8.2), 0.1).active_leg, 2u);  // 1.7 m from the corner
+  // without the flag, the same waypoint is switched on the 16 m circle
+  LosGuidance plain_route(p);
+  ASSERT_TRUE(plain_route.setPath({V3(0, 0, 0), V3(20, -9, 0), V3(40, -9, 0), V3(80, 0, 0)}));
+  EXPECT_EQ(plain_route.update(at(16.5, -7.3), 0.1).active_leg, 2u);
+  // flags that do not match the waypoints: a clear refusal (hold), not a guess
+  EXPECT_FALSE(g.setPath({V3(0, 0, 0), V3(20, 0, 0)}, false, {true}));
+  EXPECT_EQ(g.update(at(0, 0), 0.1).mode, Mode::kHoldFault);
+  // merged duplicates keep the corner flag
+  ASSERT_TRUE(g.setPath({V3(0, 0, 0), V3(20, -9, 0), V3(20, -9, 0), V3(80, 0, 0)}, false, {false, false, true, false}));
+  EXPECT_EQ(g.update(at(16.5, -7.3), 0.1).active_leg, 1u);
+}
+
 TEST(Los, SphereOfAcceptanceUsesDepth) {
   LosParams p = plain();
   p.acceptance_radius = 3.0;

@@ -79,6 +79,29 @@ TEST(Sbb, DetourOnTheSideCloserToTheVehicle) {
   }
 }
 
+TEST(Sbb, ReplanKeepsTheChosenSideWhileTheVehicleDrifts) {
+  const SbbParams p = params();
+  const std::vector<V3> path = {V3::Zero(), V3(100, 0, 0)};
+  const SbbObstacle o = buoy(3, 50.0, 0.5);  // just starboard of the path: port is nearer from the start
+  const SbbPlan first = planSbb(path, V2(0.0, 0.0), {o}, p);
+  ASSERT_EQ(first.boxes.size(), 1u);
+  EXPECT_EQ(first.boxes[0].side, SbbSide::kPort);
+  // the boat, still at the start, drifts 1.2 m east in the current: starboard is now nearer (eq. 4.7)...
+  EXPECT_EQ(planSbb(path, V2(0.0, 1.2), {o}, p).boxes[0].side, SbbSide::kStarboard);
+  // ...but a replan keeps the side already chosen
+  const SbbPlan again = planSbb(path, V2(0.0, 1.2), {o}, p, first.boxes);
+  EXPECT_EQ(again.boxes[0].side, SbbSide::kPort);
+  EXPECT_EQ(again.path, first.path);
+  // the detour flags mark exactly the two corners
+  ASSERT_EQ(first.detour.size(), first.path.size());
+  EXPECT_EQ(first.detour, (std::vector<bool>{false, true, true, false}));
+  // a kept side that no longer fits the navigable corridor gives way to the other side
+  SbbParams narrow = p;
+  narrow.max_offset = 5.0;
+  EXPECT_EQ(planSbb(path, V2(0.0, 1.2), {buoy(3, 50.0, -3.0)}, narrow, first.boxes).boxes[0].side,
+            SbbSide::kStarboard);
+}
+
 TEST(Sbb, ObstacleOffThePathIsIgnored) {
   const SbbPlan plan = planSbb({V3(0, 0, 0), V3(100, 0, 0)}, V2(0, 0), {buoy(1, 50, 20)}, params());
   ASSERT_EQ(plan.boxes.size(), 1u);

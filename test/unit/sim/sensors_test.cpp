@@ -208,7 +208,7 @@ TEST(Sonar, SectorScanBackAndForthWithStatusBits) {
 
 TEST(GpsCompass, FixAndHeading) {
   GpsCompassConfig c;
-  c.position_sigma = c.altitude_sigma = c.heading_sigma = 0.0;
+  c.position_sigma = c.position_white_sigma = c.altitude_sigma = c.heading_sigma = 0.0;
   c.antenna = {1.0, 0.0, -2.0};
   geo::LocalNed frame(geo::kPyhajarviOrigin);
   GpsCompass gps(c, frame, 1);
@@ -221,6 +221,62 @@ TEST(GpsCompass, FixAndHeading) {
   EXPECT_NEAR(ned.y(), -49.0, 1e-6);  // antenna 1 m forward, vessel heading east
   EXPECT_NEAR(r.fix.alt_m, 2.0, 2e-3);  // + earth curvature over 112 m (d^2 / 2R)
   EXPECT_NEAR(r.heading, deg2rad(90.0), 1e-12);
+}
+
+TEST(GpsCompass, DopplerVelocityAndRateOfTurnAtTheAntenna) {
+  GpsCompassConfig c;
+  c.position_sigma = c.position_white_sigma = c.altitude_sigma = c.heading_sigma = 0.0;
+  c.velocity_sigma = c.rate_sigma = 0.0;
+  c.antenna = {2.0, 0.5, -2.5};
+  geo::LocalNed frame(geo::kPyhajarviOrigin);
+  GpsCompass gps(c, frame, 1);
+  VehicleState s;
+  s.yaw = deg2rad(40.0);
+  s.velocity = {2.0, 0.3, 0.0};
+  s.angular_rate.z() = 0.1;
+  const auto r = gps.measure(s);
+  // independent check: centred difference of the antenna's NED position under the same rigid-body motion
+  auto antenna_at = [&](double t) {
+    const double yaw = s.yaw + s.angular_rate.z() * t;  // constant body velocity: integrate it exactly enough
+    Eigen::Vector2d p = Eigen::Vector2d::Zero();
+    const int n = 200;
+    for (int i = 0; i < n; ++i) {
+      const double y = s.yaw + s.angular_rate.z() * (t * (i + 0.5) / n);
+      p += t / n * Eigen::Vector2d(std::cos(y) * 2.0 - std::sin(y) * 0.3, std::sin(y) * 2.0 + std::cos(y) * 0.3);
+    }
+    return Eigen::Vector2d(p.x() + std::cos(yaw) * 2.0 - std::sin(yaw) * 0.5,
+                           p.y() + std::sin(yaw) * 2.0 + std::cos(yaw) * 0.5);
+  };
+  const double h = 1e-3;
+  const Eigen::Vector2d v = (antenna_at(h) - antenna_at(-h)) / (2 * h);
+  EXPECT_NEAR((r.velocity_ned - v).norm(), 0.0, 1e-6);
+  EXPECT_NEAR(r.rate_of_turn, 0.1, 1e-12);
+}
+
+TEST(GpsCompass, PositionErrorIsSlowGaussMarkov) {
+  GpsCompassConfig c;
+  c.position_sigma = 0.3;
+  c.position_tau = 60.0;
+  c.position_white_sigma = c.altitude_sigma = c.heading_sigma = 0.0;
+  geo::LocalNed frame(geo::kPyhajarviOrigin);
+  GpsCompass gps(c, frame, 7);
+  VehicleState s;
+  std::vector<double> e;  // north error at 10 Hz over 600 correlation times
+  for (int i = 0; i < 360000; ++i) {
+    s.t = 0.1 * i;
+    e.push_back(frame.toNed(gps.measure(s).fix).x());
+  }
+  auto corr = [&](std::size_t lag) {
+    double num = 0, den = 0;
+    for (std::size_t i = 0; i + lag < e.size(); ++i) num += e[i] * e[i + lag];
+    for (double x : e) den += x * x;
+    return num / den * e.size() / (e.size() - lag);
+  };
+  double var = 0;
+  for (double x : e) var += x * x;
+  EXPECT_NEAR(std::sqrt(var / e.size()), 0.3, 0.045);   // stationary 1-sigma
+  EXPECT_NEAR(corr(1), std::exp(-0.1 / 60.0), 0.005);   // fix to fix: almost the same error
+  EXPECT_NEAR(corr(600), std::exp(-1.0), 0.12);         // one correlation time apart
 }
 
 TEST(DepthAndAhrs, PhysicalReadings) {
