@@ -14,8 +14,9 @@ def relay(m, cfg):
     path = os.path.join(m.log_dir, m.name + "-relay.yaml")
     yaml.safe_dump(cfg, open(path, "w"))
     m.call(["rosparam", "load", path, "/relay"])
-    # line-buffered output: the link-up line is read while the relay runs
-    return m.run(["stdbuf", "-oL", "rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/Relay", "__name:=relay"],
+    # relay_node started as roslaunch starts it (by path: rosrun's own start-up is not the relay's); line-buffered
+    # output: the link-up line is read while the relay runs
+    return m.run(["stdbuf", "-oL", os.path.join(os.environ["WS"], "devel/lib/offshore_gnc/relay_node"), "__name:=relay"],
                  name="relay")
 
 WARMUP = 20  # messages before the measured ones: the relayed path advertises on its first message

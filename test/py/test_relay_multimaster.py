@@ -44,14 +44,16 @@ def _probe(argv):
 
 
 # ------------------------------------------------------------------------------------------- helpers
-def start_relay(master, cfg, name="relay"):
+def start_relay(master, cfg, name="relay", nodelet=False):
+    """The relay_node executable (as launch/relay.launch), or the same code as the Relay nodelet."""
     path = os.path.join(master.log_dir, "%s-%s.yaml" % (master.name, name))
     with open(path, "w") as f:
         yaml.safe_dump(cfg, f)
     rc, out = master.call(["rosparam", "load", path, "/" + name])
     assert rc == 0, out
-    return master.run(["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/Relay", "__name:=" + name],
-                      name=name)
+    cmd = ["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/Relay"] if nodelet else \
+        ["rosrun", "offshore_gnc", "relay_node"]
+    return master.run(cmd + ["__name:=" + name], name=name)
 
 
 def cfg(name, peers, topics, listen_port=0, key=KEY, **extra):
@@ -232,7 +234,7 @@ def test_four_masters_several_peers():
                              listen_port=port))
         dial = [{"name": "usv", "address": "127.0.0.1:%d" % port}]
         for n in ("auv1", "auv2"):
-            start_relay(ms[n], cfg(n, dial, [
+            start_relay(ms[n], nodelet=(n == "auv2"), cfg=cfg(n, dial, [
                 {"topic": "/usv_gps", "type": "std_msgs/String", "direction": "in"},
                 {"topic": "/target", "type": "std_msgs/String", "direction": "out", "remote": "/%s/target" % n,
                  "latched": True},
