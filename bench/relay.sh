@@ -53,7 +53,18 @@ with MasterSet(["a", "b"]) as ms:
     l_direct, l_relay = sub(a, "/bench/large", large_n, "ld"), sub(b, "/bench/large", large_n, "lr")
     pub(a, "/bench/large", 1 << 20, large_n, 0, 2)
     ld, lr = result(l_direct), result(l_relay)
-    # first message: a publisher and a subscriber wait; the far relay starts at t0
+    # first message on one master, for comparison: a subscriber waits, a publisher process starts at t0d and
+    # publishes as soon as the subscriber is connected (what ROS itself needs for a first message)
+    d_sub = sub(a, "/bench/first_direct", 1, "fd", timeout=20, warmup=0)
+    time.sleep(1.0)
+    t0d = time.time()
+    d_pub = subprocess.Popen([bench, "pub", "--topic", "/bench/first_direct", "--size", "100", "--count", "2000",
+                              "--rate", "100", "--subs", "1", "--settle", "0"], env=a.env(), stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL, start_new_session=True)
+    fd = result(d_sub)
+    d_pub.kill()
+    first_direct_s = fd["first_wall"] - t0d if fd["received"] else -1
+    # first message through the relay: a publisher and a subscriber wait; the far relay starts at t0
     rb.send_signal(2); rb.wait(10)
     f_sub = sub(b, "/bench/first", 1, "f", timeout=20, warmup=0)
     f_pub = subprocess.Popen([bench, "pub", "--topic", "/bench/first", "--size", "100", "--count", "2000",
@@ -74,12 +85,13 @@ print("small 100 B x %d @500 Hz: one master p50 %.3f ms p99 %.3f ms; relayed p50
       % (small_n, d["p50_ms"], d["p99_ms"], r["p50_ms"], r["p99_ms"], r["received"], small_n))
 print("large 1 MB x %d: one master %.1f MB/s (%d received); relayed %.1f MB/s (%d received), HMAC-SHA256 on"
       % (large_n, ld["MBps"], ld["received"], lr["MBps"], lr["received"]))
-print("first message %.3f s after starting the far relay process (includes its start-up), %.3f s after link-up"
-      % (first_s, link_s))
+print("first message %.3f s after starting the far relay process (includes its start-up), %.3f s after link-up;"
+      " one master: %.3f s after starting the publisher process" % (first_s, link_s, first_direct_s))
 print(json.dumps({
     "added_p50_ms_small": round(r["p50_ms"] - d["p50_ms"], 4), "added_p99_ms_small": round(r["p99_ms"] - d["p99_ms"], 4),
     "direct_p50_ms_small": d["p50_ms"], "direct_p99_ms_small": d["p99_ms"],
     "warmup_messages": WARMUP, "relay_p50_ms_small": r["p50_ms"], "relay_p99_ms_small": r["p99_ms"], "small_received": r["received"],
     "throughput_MBps_large": lr["MBps"], "direct_MBps_large": ld["MBps"], "large_received": lr["received"],
-    "first_message_s": round(first_s, 3), "first_message_after_link_up_s": round(link_s, 3)}))
+    "first_message_s": round(first_s, 3), "first_message_after_link_up_s": round(link_s, 3),
+    "first_message_direct_s": round(first_direct_s, 3)}))
 PY

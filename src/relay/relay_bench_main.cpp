@@ -31,7 +31,7 @@ double pct(std::vector<double> v, double p) {
 
 int main(int argc, char** argv) {
   if (argc < 2 || (std::strcmp(argv[1], "pub") && std::strcmp(argv[1], "sub"))) {
-    std::fprintf(stderr, "usage: relay_bench pub --topic T --size BYTES --count N --rate HZ --subs K [--warmup W]\n"
+    std::fprintf(stderr, "usage: relay_bench pub --topic T --size BYTES --count N --rate HZ --subs K [--warmup W] [--settle S]\n"
                          "       relay_bench sub --topic T --count N --timeout S [--warmup W]  (W first messages: not in the stats)\n");
     return 2;
   }
@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
     const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(30);
     while (static_cast<int>(pub.getNumSubscribers()) < subs && ros::WallTime::now() < give_up && ros::ok())
       ros::WallDuration(0.01).sleep();
-    ros::WallDuration(0.2).sleep();
+    const double settle = arg(argc, argv, "--settle", 0.2);  // after the subscribers connected [s]
+    if (settle > 0) ros::WallDuration(settle).sleep();
     sensor_msgs::PointCloud2 m;
     m.height = 1;
     m.point_step = 1;
