@@ -60,7 +60,7 @@ class ControlNodelet : public nodelet::Nodelet {
         c.dp_max_speed = p.number("dp/max_speed", c.dp_max_speed, 0.0, 10.0);
         c.dp_sway_gain = p.number("dp/sway_gain", c.dp_sway_gain, 0.0, 100.0);
         c.dp_radius = p.number("dp/radius", c.dp_radius, 0.0, 1000.0);
-        c.dp_turn_thrust = p.number("dp/turn_thrust", c.dp_turn_thrust, 0.0, 1.0);
+        c.turn_thrust = p.number("turn_thrust", c.turn_thrust, 0.0, 1.0);
         c.dt = dt;
         usv_ = std::make_unique<control::UsvController>(c);
         joy_pub_ = nh.advertise<JoystickCommand>("joystick_cmd", 10);

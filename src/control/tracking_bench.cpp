@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
       for (const auto& p : usv.track) std::fprintf(f, "usv,%.3f,%.3f,%.3f\n", p.x(), p.y(), p.z());
       for (const auto& p : buoy.track) std::fprintf(f, "buoy,%.3f,%.3f,%.3f\n", p.x(), p.y(), p.z());
       for (const auto& p : auv.track) std::fprintf(f, "auv,%.3f,%.3f,%.3f\n", p.x(), p.y(), p.z());
+      for (const auto& p : hold.track) std::fprintf(f, "hold,%.3f,%.3f,%.3f\n", p.x(), p.y(), p.z());
       std::fclose(f);
     }
   }

@@ -40,7 +40,7 @@ void UsvControlParams::validate() const {
   requireRange("dp_max_speed", dp_max_speed, 0.0, 10.0);
   requireRange("dp_sway_gain", dp_sway_gain, 0.0, 100.0);
   requireRange("dp_radius", dp_radius, 0.0, 1000.0);
-  requireRange("dp_turn_thrust", dp_turn_thrust, 0.0, 1.0);
+  requireRange("turn_thrust", turn_thrust, 0.0, 1.0);
   requireRange("dt", dt, 1e-3, 10.0);
 }
 
@@ -109,11 +109,12 @@ JoystickOut UsvController::update(const VehicleState& s, const Reference& r) {
     out.sway = clamp1(p_.dp_sway_gain * (v_ref - s.velocity.y()));
   }
   out.surge = clamp1(surge_.update(u_ref - u_f, -du, p_.dt) / p_.max_surge_force);
-  // turning needs thrust (braking astern gives it too): slow path following near the end of a path, in a
-  // current as fast as the boat, also lost its steering
-  if (std::abs(angleDiff(heading, yaw_f_)) > deg2rad(30.0) &&
-      std::abs(out.surge) < p_.dp_turn_thrust)
-    out.surge = p_.dp_turn_thrust;
+  // Turning needs thrust (braking astern gives it too): in the slowdown before the end of a path, in a current
+  // as fast as the boat, it lost its steering. Not in station keeping: there it made the boat wander 12-21 m
+  // in any direction (into the buoy 25 m away in one mission run) instead of drifting downstream.
+  if (r.mode == RefMode::kFollow && std::abs(angleDiff(heading, yaw_f_)) > deg2rad(30.0) &&
+      std::abs(out.surge) < p_.turn_thrust)
+    out.surge = p_.turn_thrust;
   out.yaw = clamp1(yaw_.update(angleDiff(heading, yaw_f_), -s.angular_rate.z(), p_.dt));
   return out;
 }

@@ -44,10 +44,9 @@ struct UsvControlParams {
   double dp_max_speed = 0.5;                             // [m/s]
   double dp_sway_gain = 0.3;                             // sway deflection per m/s of sway speed error
   double dp_radius = 3.0;                                // beyond it station keeping points the bow at the point [m]
-  // The jets steer only with thrust: at zero surge the bucket is neutral and the nozzles turn nothing, so a boat
-  // at rest with the hold point abeam never turned (drifted 50 m in the mission). While the bow is off by more
-  // than 30 deg the joystick surge is at least this (share of the full range).
-  double dp_turn_thrust = 0.3;
+  // The jets steer only with thrust: at zero surge the bucket is neutral and the nozzles turn nothing. While
+  // following a path with the bow more than 30 deg off, the joystick surge is at least this (full range 1).
+  double turn_thrust = 0.3;
   double dt = 0.1;                                       // control period [s]
   void validate() const;
 };
