@@ -133,6 +133,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
       return;
     }
     new_path_ = true;
+    boxes_.clear();  // a new route chooses its detour sides afresh
     replan_ = true;
   }
 
@@ -172,7 +173,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
       plan.path = base_path_;
       plan.status = "path clear";
     } else {
-      plan = guidance::planSbb(base_path_, state_.position.head<2>(), obstacles_, sbb_, new_path_ ? kNoBoxes : boxes_);
+      plan = guidance::planSbb(base_path_, state_.position.head<2>(), obstacles_, sbb_, boxes_);
       if (plan.blocked) NODELET_WARN_THROTTLE(5.0, "%s", plan.status.c_str());
     }
     // Re-set the LOS path only when it really changed (slowly moving obstacles), resuming on the nearest leg.
@@ -283,7 +284,6 @@ class GuidanceNodelet : public nodelet::Nodelet {
   std::vector<V3> base_path_, planned_;
   std::vector<bool> planned_detour_;
   std::vector<guidance::SbbBox> boxes_;  // the last plan's: their sides are kept while safe
-  const std::vector<guidance::SbbBox> kNoBoxes;
   std::vector<guidance::SbbObstacle> obstacles_;
   VehicleState state_;
   ros::Time odom_time_, obstacles_time_;

@@ -11,7 +11,7 @@ int main(int argc, char** argv) {
   offshore_gnc::RelayRos relay;
   try {
     relay.start(nh, pnh, ros::this_node::getName());
-  } catch (const std::exception& e) {
+  } catch (const std::exception&) {
     return 1;  // already reported (ROS_FATAL naming the parameter)
   }
   ros::spin();
