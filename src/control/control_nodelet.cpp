@@ -10,6 +10,7 @@
 #include <nav_msgs/Path.h>
 #include <nodelet/nodelet.h>
 #include <offshore_gnc/ControlConfig.h>
+#include <offshore_gnc/GuidanceStatus.h>
 #include <offshore_gnc/JoystickCommand.h>
 #include <offshore_gnc/RcChannels.h>
 #include <offshore_gnc/ThrusterSetpoints.h>
@@ -19,14 +20,34 @@
 #include <memory>
 #include <mutex>
 
-#include "../guidance/ros_convert.h"
 #include "offshore_gnc/control/vehicle_control.h"
+#include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 
 namespace offshore_gnc {
 
 namespace {
+// GuidanceStatus -> control reference (the same mapping as control::toReference for the core output).
+control::Reference referenceFromStatus(const GuidanceStatus& g, const Eigen::Vector3d& hold,
+                                              const Eigen::Vector3d& path_point) {
+  control::Reference r;
+  r.heading = g.desired_heading;
+  r.surge = g.desired_surge;
+  r.depth = std::isfinite(g.desired_depth) ? g.desired_depth : 0.0;
+  r.path_angle = g.path_angle;
+  if (g.mode == GuidanceStatus::MODE_FOLLOW_PATH) {
+    r.mode = control::RefMode::kFollow;
+    r.point = path_point;
+  } else if (g.mode == GuidanceStatus::MODE_STATION_KEEPING || g.mode == GuidanceStatus::MODE_HOLD_FAULT) {
+    r.mode = control::RefMode::kHold;
+    r.point = hold;
+  } else {
+    r.mode = control::RefMode::kIdle;
+  }
+  return r;
+}
+
 control::PidGains readPid(const ros_util::ParamReader& p, const std::string& name, const control::PidGains& def) {
   control::PidGains g;
   g.kp = p.number(name + "/kp", def.kp, 0.0, 1e6);
@@ -214,7 +235,7 @@ class ControlNodelet : public nodelet::Nodelet {
       const double a = status_.path_angle;
       const Eigen::Vector3d proj =
           state_.position - status_.cross_track_error * Eigen::Vector3d(-std::sin(a), std::cos(a), 0.0);
-      r = ros_util::referenceFromStatus(status_, hold, proj);
+      r = referenceFromStatus(status_, hold, proj);
       if (!r.valid()) {
         counters_.increment("bad_reference");
         NODELET_WARN_THROTTLE(5.0, "non-finite guidance reference: neutral command");

@@ -18,10 +18,10 @@
 
 #include "offshore_gnc/guidance/los.h"
 #include "offshore_gnc/guidance/sbb.h"
+#include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/markers.h"
 #include "offshore_gnc/ros/params.h"
-#include "ros_convert.h"
 
 namespace offshore_gnc {
 

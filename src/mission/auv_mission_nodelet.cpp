@@ -13,7 +13,7 @@
 #include "offshore_gnc/mission/mission.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
-#include "ros_mission_common.h"
+#include "ros_mission.h"
 
 namespace offshore_gnc {
 

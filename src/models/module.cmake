@@ -1,5 +1,5 @@
 # models: YAML parameter files (yaml-cpp) in the ROS-free core; the model_run CSV tool.
 find_package(yaml-cpp REQUIRED)
-target_link_libraries(offshore_gnc_core PUBLIC yaml-cpp)
+target_link_libraries(offshore_gnc_models PUBLIC yaml-cpp)
 offshore_gnc_tool(model_run SOURCES src/models/model_run_main.cpp)
 offshore_gnc_tool(models_bench SOURCES src/models/models_bench.cpp)

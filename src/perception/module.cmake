@@ -1,8 +1,8 @@
 # perception: OpenCV (core, imgproc) for the Cartesian sonar image in the core; PCL only in the benchmark
 # (the EuclideanClusterExtraction baseline), so no other file pays PCL's compile time.
 find_package(OpenCV REQUIRED COMPONENTS core imgproc)
-target_include_directories(offshore_gnc_core SYSTEM PUBLIC ${OpenCV_INCLUDE_DIRS})
-target_link_libraries(offshore_gnc_core PUBLIC opencv_core opencv_imgproc)
+target_include_directories(offshore_gnc_perception SYSTEM PUBLIC ${OpenCV_INCLUDE_DIRS})
+target_link_libraries(offshore_gnc_perception PUBLIC opencv_core opencv_imgproc)
 
 find_package(PCL QUIET COMPONENTS common search kdtree segmentation)
 if(PCL_FOUND)

@@ -18,7 +18,7 @@
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/sim/simulation.h"
-#include "ros_sim_common.h"
+#include "ros_sim.h"
 
 namespace offshore_gnc {
 
@@ -68,7 +68,7 @@ class AuvSimNodelet : public nodelet::Nodelet {
     sonar_pub_ = nh.advertise<SonarBeam>("/auv/sonar/beam", 50);
     setpoint_sub_ = nh.subscribe("/auv/thruster_setpoints", 10, &AuvSimNodelet::onSetpoints, this);
     rc_sub_ = nh.subscribe("/auv/rc_channels", 10, &AuvSimNodelet::onRc, this);
-    static_tf_.sendTransform(sim_ros::mountTransform(base_frame_, "auv/sonar", cfg.sonar.mount, 0.0, true));
+    static_tf_.sendTransform(ros_util::mountTransform(base_frame_, "auv/sonar", cfg.sonar.mount, 0.0, true));
 
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("auv_simulator");
@@ -104,18 +104,18 @@ class AuvSimNodelet : public nodelet::Nodelet {
     const auto& out = sim_->step();
     const auto& s = sim_->state();
     const ros::Time stamp(s.t);
-    if (++truth_count_ % 5 == 0) truth_pub_.publish(sim_ros::toOdometry(s, "map", base_frame_));
+    if (++truth_count_ % 5 == 0) truth_pub_.publish(ros_util::toOdometry(s, "map", base_frame_));
     if (out.odom) {
-      const auto o = sim_ros::toOdometry(*out.odom, "map", base_frame_);
+      const auto o = ros_util::toOdometry(*out.odom, "map", base_frame_);
       odom_pub_.publish(o);
-      tf_.sendTransform(sim_ros::toTransform(o));
+      tf_.sendTransform(ros_util::toTransform(o));
     }
     if (out.ahrs) {
       const auto& a = *out.ahrs;
       sensor_msgs::Imu m;
       m.header.stamp = stamp;
       m.header.frame_id = base_frame_;
-      m.orientation = sim_ros::enuQuaternion(a.roll, a.pitch, a.yaw);
+      m.orientation = ros_util::enuQuaternion(a.roll, a.pitch, a.yaw);
       m.angular_velocity.x = a.angular_rate.x();  // FRD -> FLU
       m.angular_velocity.y = -a.angular_rate.y();
       m.angular_velocity.z = -a.angular_rate.z();

@@ -20,7 +20,7 @@
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/sim/simulation.h"
-#include "ros_sim_common.h"
+#include "ros_sim.h"
 
 namespace offshore_gnc {
 
@@ -78,8 +78,8 @@ class UsvSimNodelet : public nodelet::Nodelet {
     manual_sub_ = nh.subscribe("/usv/manual_cmd", 10, &UsvSimNodelet::onManual, this);
     if (!scenario_.map.empty()) map_pub_.publish(gridMessage());
 
-    static_tf_.sendTransform({sim_ros::mountTransform(base_frame_, "usv/lidar", cfg.lidar.mount, cfg.lidar.mount_yaw, false),
-                              sim_ros::mountTransform(base_frame_, "usv/gps", cfg.gps.antenna, 0.0, false)});
+    static_tf_.sendTransform({ros_util::mountTransform(base_frame_, "usv/lidar", cfg.lidar.mount, cfg.lidar.mount_yaw, false),
+                              ros_util::mountTransform(base_frame_, "usv/gps", cfg.gps.antenna, 0.0, false)});
 
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("usv_simulator");
@@ -125,13 +125,13 @@ class UsvSimNodelet : public nodelet::Nodelet {
     const auto& out = sim_->step();
     const auto& s = sim_->state();
     const ros::Time stamp(s.t);
-    if (++truth_count_ % 5 == 0) truth_pub_.publish(sim_ros::toOdometry(s, "map", base_frame_));  // 20 Hz
+    if (++truth_count_ % 5 == 0) truth_pub_.publish(ros_util::toOdometry(s, "map", base_frame_));  // 20 Hz
     if (out.gps) {
       // heading and velocity first: the navigation pairs each fix with the latest of both
       geometry_msgs::QuaternionStamped h;
       h.header.stamp = stamp;
       h.header.frame_id = "map";
-      h.quaternion = sim_ros::enuQuaternion(0.0, 0.0, out.gps->heading);
+      h.quaternion = ros_util::enuQuaternion(0.0, 0.0, out.gps->heading);
       heading_pub_.publish(h);
       // as the CAN gateway's: ENU ground velocity (Doppler SOG/COG); angular.z = rate of turn, counter-clockwise
       geometry_msgs::TwistStamped v;

@@ -25,7 +25,7 @@
 #include "offshore_gnc/usbl/positioning.h"
 #include "offshore_gnc/usbl/seatrac.h"
 #include "offshore_gnc/usbl/serial_port.h"
-#include "ros_usbl_common.h"
+#include "ros_usbl.h"
 
 namespace offshore_gnc {
 

@@ -24,7 +24,7 @@
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/usbl/beacon_sim.h"
-#include "ros_usbl_common.h"
+#include "ros_usbl.h"
 
 namespace offshore_gnc {
 

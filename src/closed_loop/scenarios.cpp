@@ -1,9 +1,9 @@
-#include "offshore_gnc/control/scenarios.h"
+#include "offshore_gnc/closed_loop/scenarios.h"
 
 #include "offshore_gnc/guidance/paths.h"
 
 namespace offshore_gnc {
-namespace control {
+namespace closed_loop {
 namespace scenarios {
 
 ClosedLoopConfig usvStraight(bool adaptive_crab) {
@@ -76,5 +76,5 @@ ClosedLoopConfig auvCoverage(bool adaptive_crab) {
 }
 
 }  // namespace scenarios
-}  // namespace control
+}  // namespace closed_loop
 }  // namespace offshore_gnc

@@ -6,9 +6,10 @@
 #include <cstdio>
 #include <cstring>
 
-#include "offshore_gnc/control/scenarios.h"
+#include "offshore_gnc/closed_loop/scenarios.h"
 
 using namespace offshore_gnc;
+using namespace offshore_gnc::closed_loop;
 using namespace offshore_gnc::control;
 
 namespace {

@@ -1,6 +1,6 @@
 // GPS-compass navigation: pose from the fix and heading; velocity from the receiver's Doppler velocity, or by
 // filtered differences of fixes when it reports none.
-#include "offshore_gnc/sim/navigation.h"
+#include "offshore_gnc/navigation/gps_navigator.h"
 
 #include <cmath>
 
@@ -8,7 +8,7 @@
 #include "offshore_gnc/common/validate.h"
 
 namespace offshore_gnc {
-namespace sim {
+namespace navigation {
 
 GpsNavigator::GpsNavigator(const geo::LatLonAlt& origin, const GpsNavigatorConfig& cfg) : frame_(origin), cfg_(cfg) {
   requireRange("heading_timeout", cfg.heading_timeout, 1e-3, 60);
@@ -79,5 +79,5 @@ std::optional<VehicleState> GpsNavigator::fix(double t, const geo::LatLonAlt& p)
   return s;
 }
 
-}  // namespace sim
+}  // namespace navigation
 }  // namespace offshore_gnc

@@ -9,7 +9,7 @@
 #include "offshore_gnc/models/state.h"
 
 namespace offshore_gnc {
-namespace sim {
+namespace navigation {
 
 struct GpsNavigatorConfig {
   Eigen::Vector3d antenna{0, 0, -2.5};  // antenna in body FRD [m], removed from the fix
@@ -41,5 +41,5 @@ class GpsNavigator {
   Counters counters_;
 };
 
-}  // namespace sim
+}  // namespace navigation
 }  // namespace offshore_gnc

@@ -13,8 +13,9 @@
 #include <memory>
 
 #include "offshore_gnc/ros/diagnostics.h"
-#include "offshore_gnc/sim/navigation.h"
-#include "ros_sim_common.h"
+#include "offshore_gnc/navigation/gps_navigator.h"
+#include "offshore_gnc/ros/conversions.h"
+#include "offshore_gnc/ros/params.h"
 
 namespace offshore_gnc {
 
@@ -23,7 +24,7 @@ class GpsNavigationNodelet : public nodelet::Nodelet {
     ros::NodeHandle& nh = getNodeHandle();
     ros_util::ParamReader p(getPrivateNodeHandle());
     geo::LatLonAlt o;
-    sim::GpsNavigatorConfig cfg;
+    navigation::GpsNavigatorConfig cfg;
     try {
       o.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -89, 89);
       o.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
@@ -37,7 +38,7 @@ class GpsNavigationNodelet : public nodelet::Nodelet {
       use_rate_of_turn_ = p.flag("use_rate_of_turn", true);
       base_frame_ = p.text("base_frame", "usv/base_link");
       world_frame_ = p.text("world_frame", "map");
-      nav_ = std::make_unique<sim::GpsNavigator>(o, cfg);
+      nav_ = std::make_unique<navigation::GpsNavigator>(o, cfg);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -91,18 +92,18 @@ class GpsNavigationNodelet : public nodelet::Nodelet {
       NODELET_WARN_THROTTLE(1.0, "unusable /usv_gps fix (NaN, stale, or no heading within the timeout)");
       return;
     }
-    auto o = sim_ros::toOdometry(*s, world_frame_, base_frame_);
+    auto o = ros_util::toOdometry(*s, world_frame_, base_frame_);
     o.header.stamp = m->header.stamp;
     const double v = m->position_covariance_type != sensor_msgs::NavSatFix::COVARIANCE_TYPE_UNKNOWN
                          ? m->position_covariance[0]
                          : 1.0;
     o.pose.covariance[0] = o.pose.covariance[7] = v;
     odom_pub_.publish(o);
-    tf_.sendTransform(sim_ros::toTransform(o));
+    tf_.sendTransform(ros_util::toTransform(o));
   }
 
   std::mutex mutex_;
-  std::unique_ptr<sim::GpsNavigator> nav_;
+  std::unique_ptr<navigation::GpsNavigator> nav_;
   std::string base_frame_, world_frame_;
   bool use_rate_of_turn_ = true;
   ros::Publisher odom_pub_;

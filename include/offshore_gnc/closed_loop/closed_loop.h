@@ -13,7 +13,7 @@
 #include "offshore_gnc/guidance/sbb.h"
 
 namespace offshore_gnc {
-namespace control {
+namespace closed_loop {
 
 struct ClosedLoopConfig {
   std::vector<Eigen::Vector3d> path;                 // NED waypoints
@@ -27,7 +27,7 @@ struct ClosedLoopConfig {
   double control_dt = 0.1;                           // [s]
   std::uint64_t seed = 1;
   // true: guidance and control see the navigation estimate from the simulated sensors, as on the vehicle (USV:
-  // GPS-compass -> sim::GpsNavigator; AUV: the INS estimate); false: the true state (isolates the controller).
+  // GPS-compass -> navigation::GpsNavigator; AUV: the INS estimate); false: the true state (isolates the controller).
   bool navigation = true;
   double hold_until = 90.0;  // station keeping is measured from 30 s after the end of the path to this [s]
 };
@@ -45,12 +45,12 @@ struct ClosedLoopResult {
   std::string status;
 };
 
-ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const UsvControlParams& ctrl = UsvControlParams());
+ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const control::UsvControlParams& ctrl = control::UsvControlParams());
 ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg,
-                              const Girona500ControlParams& ctrl = Girona500ControlParams());
+                              const control::Girona500ControlParams& ctrl = control::Girona500ControlParams());
 
 // Guidance output -> control reference (also used by the nodelets' GuidanceStatus conversion).
-Reference toReference(const guidance::LosOutput& o);
+control::Reference toReference(const guidance::LosOutput& o);
 
-}  // namespace control
+}  // namespace closed_loop
 }  // namespace offshore_gnc

@@ -1,10 +1,10 @@
 #pragma once
 // The closed-loop scenarios shared by the gtests and `./scripts/bench tracking` (thesis Fig. 4.11, 4.14, 4.19),
 // each with a 0.2 m/s current across the main path direction.
-#include "offshore_gnc/control/closed_loop.h"
+#include "offshore_gnc/closed_loop/closed_loop.h"
 
 namespace offshore_gnc {
-namespace control {
+namespace closed_loop {
 namespace scenarios {
 
 ClosedLoopConfig usvStraight(bool adaptive_crab);  // 5 waypoints on a straight line (Fig. 4.11)
@@ -20,5 +20,5 @@ ClosedLoopConfig usvHoldFromRest();
 ClosedLoopConfig usvShortTransit();
 
 }  // namespace scenarios
-}  // namespace control
+}  // namespace closed_loop
 }  // namespace offshore_gnc

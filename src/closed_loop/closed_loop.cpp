@@ -1,31 +1,31 @@
-#include "offshore_gnc/control/closed_loop.h"
+#include "offshore_gnc/closed_loop/closed_loop.h"
 
 #include <cmath>
 
-#include "offshore_gnc/sim/navigation.h"
+#include "offshore_gnc/navigation/gps_navigator.h"
 #include "offshore_gnc/sim/simulation.h"
 
 namespace offshore_gnc {
-namespace control {
+namespace closed_loop {
 
-Reference toReference(const guidance::LosOutput& o) {
-  Reference r;
+control::Reference toReference(const guidance::LosOutput& o) {
+  control::Reference r;
   r.heading = o.desired_heading;
   r.surge = o.desired_surge;
   r.depth = o.desired_depth;
   r.path_angle = o.path_angle;
   switch (o.mode) {
     case guidance::Mode::kFollowPath:
-      r.mode = RefMode::kFollow;
+      r.mode = control::RefMode::kFollow;
       r.point = o.path_point;
       break;
     case guidance::Mode::kStationKeeping:
     case guidance::Mode::kHoldFault:
-      r.mode = RefMode::kHold;
+      r.mode = control::RefMode::kHold;
       r.point = o.hold_position;
       break;
     default:
-      r.mode = RefMode::kIdle;
+      r.mode = control::RefMode::kIdle;
   }
   return r;
 }
@@ -102,22 +102,22 @@ ClosedLoopResult run(const ClosedLoopConfig& cfg, Plant& plant, Apply apply, Nav
 
 }  // namespace
 
-ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const UsvControlParams& ctrl_p) {
+ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const control::UsvControlParams& ctrl_p) {
   sim::UsvSimulation::Config sc;
   sc.seed = cfg.seed;
   sc.lidar_on = false;
   const sim::Scenario scenario = scenarioOf(cfg);
   sim::UsvSimulation plant(scenario, sc);
-  UsvControlParams p = ctrl_p;
+  control::UsvControlParams p = ctrl_p;
   p.dt = cfg.control_dt;
-  UsvController ctrl(p);
-  sim::GpsNavigatorConfig nc;  // as the GpsNavigation nodelet: the antenna's lever arm removed
+  control::UsvController ctrl(p);
+  navigation::GpsNavigatorConfig nc;  // as the GpsNavigation nodelet: the antenna's lever arm removed
   nc.antenna = sc.gps.antenna;
-  sim::GpsNavigator nav(scenario.origin, nc);
+  navigation::GpsNavigator nav(scenario.origin, nc);
   return run(
       cfg, plant,
-      [&](const VehicleState& s, const Reference& r) {
-        const JoystickOut j = ctrl.update(s, r);
+      [&](const VehicleState& s, const control::Reference& r) {
+        const control::JoystickOut j = ctrl.update(s, r);
         const bool finite = std::isfinite(j.surge) && std::isfinite(j.sway) && std::isfinite(j.yaw);
         plant.setCommand(models::UsvCommand{j.surge, j.sway, j.yaw});
         return finite;
@@ -130,18 +130,18 @@ ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const UsvControlParams& ctr
       });
 }
 
-ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg, const Girona500ControlParams& ctrl_p) {
+ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg, const control::Girona500ControlParams& ctrl_p) {
   sim::AuvSimulation::Config sc;
   sc.seed = cfg.seed;
   sc.sonar_on = false;
   sim::AuvSimulation plant(scenarioOf(cfg), sc);
-  Girona500ControlParams p = ctrl_p;
+  control::Girona500ControlParams p = ctrl_p;
   p.dt = cfg.control_dt;
-  Girona500Controller ctrl(p);
+  control::Girona500Controller ctrl(p);
   return run(
       cfg, plant,
-      [&](const VehicleState& s, const Reference& r) {
-        const Girona500Out out = ctrl.update(s, r);
+      [&](const VehicleState& s, const control::Reference& r) {
+        const control::Girona500Out out = ctrl.update(s, r);
         const auto& sp = out.alloc.setpoint;
         const bool finite = sp.allFinite();
         plant.setThrusters(std::vector<double>(sp.data(), sp.data() + sp.size()));
@@ -150,5 +150,5 @@ ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg, const Girona500Contro
       [](const sim::AuvSimulation::Outputs& out) { return out.odom; });
 }
 
-}  // namespace control
+}  // namespace closed_loop
 }  // namespace offshore_gnc

@@ -6,10 +6,11 @@
 #include <limits>
 
 #include "offshore_gnc/common/angles.h"
-#include "offshore_gnc/control/closed_loop.h"
-#include "offshore_gnc/control/scenarios.h"
+#include "offshore_gnc/closed_loop/closed_loop.h"
+#include "offshore_gnc/closed_loop/scenarios.h"
 
 using namespace offshore_gnc;
+using namespace offshore_gnc::closed_loop;
 using namespace offshore_gnc::control;
 
 TEST(ClosedLoop, UsvFiveWaypointStraightPathWithCrossCurrent) {

@@ -1,0 +1,100 @@
+#pragma once
+// Core state <-> ROS messages, for every nodelet: the cores work in NED / body FRD, messages in REP-103 frames
+// (map ENU, base_link FLU; docs/architecture.md).
+#include <geometry_msgs/Quaternion.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <tf2/LinearMath/Quaternion.h>
+#include <tf2/utils.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/models/state.h"
+
+namespace offshore_gnc {
+namespace ros_util {
+
+inline VehicleState stateFromOdom(const nav_msgs::Odometry& o) {
+  VehicleState s;
+  s.t = o.header.stamp.toSec();
+  const auto& p = o.pose.pose.position;
+  s.position = geo::enuToNed(Eigen::Vector3d(p.x, p.y, p.z));
+  const auto& q = o.pose.pose.orientation;
+  const double n2 = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+  s.yaw = (std::isfinite(n2) && n2 > 1e-6) ? geo::enuYawToNed(tf2::getYaw(o.pose.pose.orientation))
+                                          : std::numeric_limits<double>::quiet_NaN();
+  const auto& v = o.twist.twist.linear;
+  s.velocity = Eigen::Vector3d(v.x, -v.y, -v.z);  // FLU -> FRD
+  const auto& w = o.twist.twist.angular;
+  s.angular_rate = Eigen::Vector3d(w.x, -w.y, -w.z);
+  return s;
+}
+
+// Orientation of a FLU body in the ENU map from NED/FRD Euler angles.
+inline geometry_msgs::Quaternion enuQuaternion(double roll, double pitch, double yaw_ned) {
+  tf2::Quaternion q;
+  q.setRPY(roll, -pitch, geo::nedYawToEnu(yaw_ned));
+  geometry_msgs::Quaternion m;
+  m.x = q.x();
+  m.y = q.y();
+  m.z = q.z();
+  m.w = q.w();
+  return m;
+}
+
+inline nav_msgs::Odometry toOdometry(const VehicleState& s, const std::string& frame, const std::string& child) {
+  nav_msgs::Odometry o;
+  o.header.stamp = ros::Time(s.t);
+  o.header.frame_id = frame;
+  o.child_frame_id = child;
+  const Eigen::Vector3d p = geo::nedToEnu(s.position);
+  o.pose.pose.position.x = p.x();
+  o.pose.pose.position.y = p.y();
+  o.pose.pose.position.z = p.z();
+  o.pose.pose.orientation = enuQuaternion(s.roll, s.pitch, s.yaw);
+  o.twist.twist.linear.x = s.velocity.x();  // body FRD -> FLU
+  o.twist.twist.linear.y = -s.velocity.y();
+  o.twist.twist.linear.z = -s.velocity.z();
+  o.twist.twist.angular.x = s.angular_rate.x();
+  o.twist.twist.angular.y = -s.angular_rate.y();
+  o.twist.twist.angular.z = -s.angular_rate.z();
+  return o;
+}
+
+inline geometry_msgs::TransformStamped toTransform(const nav_msgs::Odometry& o) {
+  geometry_msgs::TransformStamped t;
+  t.header = o.header;
+  t.child_frame_id = o.child_frame_id;
+  t.transform.translation.x = o.pose.pose.position.x;
+  t.transform.translation.y = o.pose.pose.position.y;
+  t.transform.translation.z = o.pose.pose.position.z;
+  t.transform.rotation = o.pose.pose.orientation;
+  return t;
+}
+
+// Static sensor mount: body FLU -> sensor. `frd` selects a sensor frame that is itself x forward, y starboard,
+// z down (the sonar head, SonarBeam.msg), otherwise the sensor frame is FLU like the body.
+inline geometry_msgs::TransformStamped mountTransform(const std::string& base, const std::string& sensor,
+                                                      const Eigen::Vector3d& mount_frd, double yaw_frd, bool frd) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros::Time(0);
+  t.header.frame_id = base;
+  t.child_frame_id = sensor;
+  t.transform.translation.x = mount_frd.x();
+  t.transform.translation.y = -mount_frd.y();
+  t.transform.translation.z = -mount_frd.z();
+  tf2::Quaternion q;
+  q.setRPY(frd ? kPi : 0.0, 0.0, -yaw_frd);
+  t.transform.rotation.x = q.x();
+  t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z();
+  t.transform.rotation.w = q.w();
+  return t;
+}
+
+}  // namespace ros_util
+}  // namespace offshore_gnc
