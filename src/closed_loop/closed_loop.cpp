@@ -8,28 +8,6 @@
 namespace offshore_gnc {
 namespace closed_loop {
 
-control::Reference toReference(const guidance::LosOutput& o) {
-  control::Reference r;
-  r.heading = o.desired_heading;
-  r.surge = o.desired_surge;
-  r.depth = o.desired_depth;
-  r.path_angle = o.path_angle;
-  switch (o.mode) {
-    case guidance::Mode::kFollowPath:
-      r.mode = control::RefMode::kFollow;
-      r.point = o.path_point;
-      break;
-    case guidance::Mode::kStationKeeping:
-    case guidance::Mode::kHoldFault:
-      r.mode = control::RefMode::kHold;
-      r.point = o.hold_position;
-      break;
-    default:
-      r.mode = control::RefMode::kIdle;
-  }
-  return r;
-}
-
 namespace {
 
 sim::Scenario scenarioOf(const ClosedLoopConfig& cfg) {
@@ -83,7 +61,7 @@ ClosedLoopResult run(const ClosedLoopConfig& cfg, Plant& plant, Apply apply, Nav
           res.min_clearance, (truth.position.head<2>() - ob.origin).norm() - std::max(ob.length, ob.width) / 2.0);
     for (const auto& b : boxes)
       if (b.cuts_path && b.contains(truth.position.head<2>())) ++res.inside_box_samples;
-    if (!apply(s, toReference(o))) ++res.nan_outputs;
+    if (!apply(s, guidance::referenceOf(o))) ++res.nan_outputs;
     for (int i = 0; i < sub; ++i)
       if (auto e = navigate(plant.step())) estimate = *e;
     // Station keeping: the largest distance from the last waypoint once settled (30 s to hold_until after the end).
@@ -116,7 +94,7 @@ ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const control::UsvControlPa
   navigation::GpsNavigator nav(scenario.origin, nc);
   return run(
       cfg, plant,
-      [&](const VehicleState& s, const control::Reference& r) {
+      [&](const VehicleState& s, const MotionReference& r) {
         const control::JoystickOut j = ctrl.update(s, r);
         const bool finite = std::isfinite(j.surge) && std::isfinite(j.sway) && std::isfinite(j.yaw);
         plant.setCommand(models::UsvCommand{j.surge, j.sway, j.yaw});
@@ -140,7 +118,7 @@ ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg, const control::Girona
   control::Girona500Controller ctrl(p);
   return run(
       cfg, plant,
-      [&](const VehicleState& s, const control::Reference& r) {
+      [&](const VehicleState& s, const MotionReference& r) {
         const control::Girona500Out out = ctrl.update(s, r);
         const auto& sp = out.alloc.setpoint;
         const bool finite = sp.allFinite();

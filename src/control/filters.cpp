@@ -53,11 +53,16 @@ bool Biquad::stable() const {
   return std::abs(a2) < 1.0 && 1.0 + a1 + a2 > 0.0 && 1.0 - a1 + a2 > 0.0;
 }
 
-void FilterParams::validate() const {
-  requireRange("filter/tf", tf, 0.0, 100.0);
-  requireRange("filter/xi", xi, 0.0, 1.0);
-  for (double w : notch_w) requireRange("filter/notch_w", w, 1e-4, 1000.0);
+const ParamTable<FilterParams>& FilterParams::table() {
+  using P = FilterParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("tf", &P::tf, 0.0, 100.0, "s", "low-pass time constant T_f (eq. 4.15; 0 = off)")
+      .number("xi", &P::xi, 0.0, 1.0, "", "notch design parameter xi (eq. 4.16): the depth at the centre")
+      .numbers("notch_w", &P::notch_w, 0, 1e-4, 1000.0, "rad/s", "centre frequencies of the notches (empty = off)");
+  return t;
 }
+
+void FilterParams::validate() const { table().validate(*this, "filter/"); }
 
 FeedbackFilter::FeedbackFilter(const FilterParams& p, double dt) : dt_(dt) {
   p.validate();

@@ -9,14 +9,18 @@
 namespace offshore_gnc {
 namespace control {
 
-void PidGains::validate(const char* name) const {
-  const std::string n(name);
-  requireRange(n + "/kp", kp, 0.0, 1e6);
-  requireRange(n + "/ki", ki, 0.0, 1e6);
-  requireRange(n + "/kd", kd, 0.0, 1e6);
-  requirePositive(n + "/out_limit", out_limit);
-  requireRange(n + "/i_limit", i_limit, 0.0, 1e12);
+const ParamTable<PidGains>& PidGains::table() {
+  using P = PidGains;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("kp", &P::kp, 0.0, 1e6, "", "proportional gain")
+      .number("ki", &P::ki, 0.0, 1e6, "", "integral gain")
+      .number("kd", &P::kd, 0.0, 1e6, "", "derivative gain (on the measured rate)")
+      .number("out_limit", &P::out_limit, 1e-6, 1e9, "", "|output| bound")
+      .number("i_limit", &P::i_limit, 0.0, 1e12, "", "|ki * integral| bound (anti-windup)");
+  return t;
 }
+
+void PidGains::validate(const std::string& name) const { table().validate(*this, name + "/"); }
 
 void Pid::setGains(const PidGains& g) {
   g_ = g;

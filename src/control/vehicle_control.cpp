@@ -26,21 +26,24 @@ Eigen::Vector2d toBody(const Eigen::Vector2d& ned, double yaw) {
 
 }  // namespace
 
-bool Reference::valid() const {
-  return std::isfinite(heading) && std::isfinite(surge) && point.head<2>().allFinite() &&
-         std::isfinite(path_angle);
+const ParamTable<UsvControlParams>& UsvControlParams::table() {
+  using P = UsvControlParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .nest("surge/", &P::surge, PidGains::table())
+      .nest("yaw/", &P::yaw, PidGains::table())
+      .number("max_surge_force", &P::max_surge_force, 1e-3, 1e7, "N", "surge force at full joystick deflection")
+      .nest("filter/", &P::filter, FilterParams::table())
+      .number("dp/speed_gain", &P::dp_speed_gain, 0.0, 10.0, "1/s", "station keeping: speed per metre of offset")
+      .number("dp/max_speed", &P::dp_max_speed, 0.0, 10.0, "m/s", "station keeping: largest speed")
+      .number("dp/sway_gain", &P::dp_sway_gain, 0.0, 100.0, "s/m", "sway deflection per m/s of sway speed error")
+      .number("dp/radius", &P::dp_radius, 0.0, 1000.0, "m", "beyond it station keeping points the bow at the point")
+      .number("turn_thrust", &P::turn_thrust, 0.0, 1.0, "",
+              "least joystick surge while following a path with the bow > 30 deg off (the jets steer with thrust)");
+  return t;
 }
 
 void UsvControlParams::validate() const {
-  surge.validate("surge");
-  yaw.validate("yaw");
-  requirePositive("max_surge_force", max_surge_force);
-  filter.validate();
-  requireRange("dp_speed_gain", dp_speed_gain, 0.0, 10.0);
-  requireRange("dp_max_speed", dp_max_speed, 0.0, 10.0);
-  requireRange("dp_sway_gain", dp_sway_gain, 0.0, 100.0);
-  requireRange("dp_radius", dp_radius, 0.0, 1000.0);
-  requireRange("turn_thrust", turn_thrust, 0.0, 1.0);
+  table().validate(*this);
   requireRange("dt", dt, 1e-3, 10.0);
 }
 
@@ -60,7 +63,7 @@ void UsvController::setParams(const UsvControlParams& p) {
   }
 }
 
-JoystickOut UsvController::update(const VehicleState& s, const Reference& r) {
+JoystickOut UsvController::update(const VehicleState& s, const MotionReference& r) {
   JoystickOut out;
   if (!stateFinite(s)) {
     counters_.increment("nan_state");
@@ -85,14 +88,14 @@ JoystickOut UsvController::update(const VehicleState& s, const Reference& r) {
   const double u_f = f_u_.step(s.velocity.x());
   const double du = (u_f - u_f_prev_) / p_.dt;
   u_f_prev_ = u_f;
-  if (r.mode == RefMode::kIdle) {
+  if (r.mode == ReferenceMode::kIdle) {
     surge_.reset();
     yaw_.reset();
     return out;
   }
   double u_ref = r.surge;
   double heading = r.heading;
-  if (r.mode == RefMode::kHold) {
+  if (r.mode == ReferenceMode::kHold) {
     // Waterjets give little sway: away from the point, point the bow at it and drive back.
     const Eigen::Vector2d d_ned = r.point.head<2>() - s.position.head<2>();
     const Eigen::Vector2d err = toBody(d_ned, s.yaw);
@@ -112,21 +115,31 @@ JoystickOut UsvController::update(const VehicleState& s, const Reference& r) {
   // Turning needs thrust (braking astern gives it too): in the slowdown before the end of a path, in a current
   // as fast as the boat, it lost its steering. Not in station keeping: there it made the boat wander 12-21 m
   // in any direction (into the buoy 25 m away in one mission run) instead of drifting downstream.
-  if (r.mode == RefMode::kFollow && std::abs(angleDiff(heading, yaw_f_)) > deg2rad(30.0) &&
+  if (r.mode == ReferenceMode::kFollow && std::abs(angleDiff(heading, yaw_f_)) > deg2rad(30.0) &&
       std::abs(out.surge) < p_.turn_thrust)
     out.surge = p_.turn_thrust;
   out.yaw = clamp1(yaw_.update(angleDiff(heading, yaw_f_), -s.angular_rate.z(), p_.dt));
   return out;
 }
 
+const ParamTable<AcolorControlParams>& AcolorControlParams::table() {
+  using P = AcolorControlParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .nest("yaw/", &P::yaw, PidGains::table())
+      .nest("heave/", &P::heave, PidGains::table())
+      .number("surge_pwm", &P::surge_pwm, 1100.0, 1900.0, "us", "constant surge PWM while following a path")
+      .integer("rc/num_channels", &P::num_channels, 1, 18, "RC channels sent to the flight controller")
+      .integer("rc/heave", &P::channel_heave, 1, 18, "1-based channel of heave (throttle)")
+      .integer("rc/yaw", &P::channel_yaw, 1, 18, "1-based channel of yaw")
+      .integer("rc/surge", &P::channel_surge, 1, 18, "1-based channel of surge (forward)");
+  return t;
+}
+
 void AcolorControlParams::validate() const {
-  yaw.validate("yaw");
-  heave.validate("heave");
-  requireRange("surge_pwm", surge_pwm, 1100.0, 1900.0);
-  requireRange("num_channels", num_channels, 1, 18);
-  requireRange("channel_heave", channel_heave, 1, num_channels);
-  requireRange("channel_yaw", channel_yaw, 1, num_channels);
-  requireRange("channel_surge", channel_surge, 1, num_channels);
+  table().validate(*this);
+  requireRange("rc/heave", channel_heave, 1, num_channels);
+  requireRange("rc/yaw", channel_yaw, 1, num_channels);
+  requireRange("rc/surge", channel_surge, 1, num_channels);
   requireRange("dt", dt, 1e-3, 10.0);
 }
 
@@ -143,13 +156,13 @@ std::uint16_t AcolorController::pwm(double normalised) {
   return static_cast<std::uint16_t>(std::lround(1500.0 + 400.0 * clamp1(normalised)));
 }
 
-std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const Reference& r) {
+std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const MotionReference& r) {
   std::vector<std::uint16_t> ch(p_.num_channels, 1500);
-  if (!stateFinite(s) || !r.valid() || (r.mode != RefMode::kIdle && !std::isfinite(r.depth))) {
+  if (!stateFinite(s) || !r.valid() || (r.mode != ReferenceMode::kIdle && !std::isfinite(r.depth))) {
     counters_.increment(stateFinite(s) ? "bad_reference" : "nan_state");
     return ch;  // neutral on every channel
   }
-  if (r.mode == RefMode::kIdle) {
+  if (r.mode == ReferenceMode::kIdle) {
     yaw_.reset();
     heave_.reset();
     return ch;
@@ -161,7 +174,7 @@ std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const
   ch[p_.channel_heave - 1] = pwm(heave_us / 400.0);
   // Constant surge while following; the aColor cannot hold station horizontally, it stops and holds depth.
   ch[p_.channel_surge - 1] =
-      r.mode == RefMode::kFollow ? static_cast<std::uint16_t>(std::lround(p_.surge_pwm)) : 1500;
+      r.mode == ReferenceMode::kFollow ? static_cast<std::uint16_t>(std::lround(p_.surge_pwm)) : 1500;
   return ch;
 }
 
@@ -178,14 +191,21 @@ Girona500ControlParams::Girona500ControlParams() {
   command_for = [model](int i, double f) { return model->commandFor(i, f); };
 }
 
+const ParamTable<Girona500ControlParams>& Girona500ControlParams::table() {
+  using P = Girona500ControlParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .nest("north/", &P::north, PidGains::table())
+      .nest("east/", &P::east, PidGains::table())
+      .nest("down/", &P::down, PidGains::table())
+      .nest("yaw/", &P::yaw, PidGains::table())
+      .number("lead", &P::lead, 0.0, 100.0, "m", "path following: the reference this far ahead of the projection")
+      .number("cross_ki", &P::cross_ki, 0.0, 10.0, "1/s", "path-frame cross-track integral gain (0 = off)")
+      .number("cross_limit", &P::cross_limit, 0.0, 100.0, "m", "largest cross-track offset of the integral");
+  return t;
+}
+
 void Girona500ControlParams::validate() const {
-  north.validate("north");
-  east.validate("east");
-  down.validate("down");
-  yaw.validate("yaw");
-  requireRange("lead", lead, 0.0, 100.0);
-  requireRange("cross_ki", cross_ki, 0.0, 10.0);
-  requireRange("cross_limit", cross_limit, 0.0, 100.0);
+  table().validate(*this);
   requireRange("dt", dt, 1e-3, 10.0);
   if (tcm.rows() != 4) throw ConfigError("parameter 'tcm' must have 4 rows (X, Y, Z, N)");
 }
@@ -202,10 +222,10 @@ void Girona500Controller::setParams(const Girona500ControlParams& p) {
   yaw_.setGains(p.yaw);
 }
 
-Girona500Out Girona500Controller::update(const VehicleState& s, const Reference& r) {
+Girona500Out Girona500Controller::update(const VehicleState& s, const MotionReference& r) {
   Girona500Out out;
-  const bool ok = stateFinite(s) && r.valid() && (r.mode == RefMode::kIdle || std::isfinite(r.depth));
-  if (!ok || r.mode == RefMode::kIdle) {
+  const bool ok = stateFinite(s) && r.valid() && (r.mode == ReferenceMode::kIdle || std::isfinite(r.depth));
+  if (!ok || r.mode == ReferenceMode::kIdle) {
     if (!ok) counters_.increment(stateFinite(s) ? "bad_reference" : "nan_state");
     n_.reset();
     e_.reset();
@@ -217,7 +237,7 @@ Girona500Out Girona500Controller::update(const VehicleState& s, const Reference&
   }
   Eigen::Vector3d target(r.point.x(), r.point.y(), r.depth);
   Eigen::Vector2d v_ref = Eigen::Vector2d::Zero();
-  if (r.mode == RefMode::kFollow) {
+  if (r.mode == ReferenceMode::kFollow) {
     // The reference slides along the leg at u_d: derivative of the error, not of the measurement, so the D
     // term damps the motion relative to the reference instead of braking the transit.
     const Eigen::Vector2d u(std::cos(r.path_angle), std::sin(r.path_angle)), v(-u.y(), u.x());

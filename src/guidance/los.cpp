@@ -10,19 +10,52 @@
 namespace offshore_gnc {
 namespace guidance {
 
-void LosParams::validate() const {
-  requireRange("los/kp", kp, 1e-4, 10.0);
-  requireRange("los/ki", ki, 0.0, 1.0);
-  requireRange("los/integral_limit", integral_limit, 0.0, kPi / 2);
-  requireRange("los/crab_gain", crab_gain, 0.0, 1.0);
-  requireRange("los/crab_limit", crab_limit, 0.0, kPi / 2);
-  requireRange("los/acceptance_radius", acceptance_radius, 0.01, 1000.0);
-  requireRange("los/surge_speed", surge_speed, 0.0, 20.0);
-  requireRange("los/min_leg_length", min_leg_length, 1e-6, 10.0);
-  requireRange("los/final_radius", final_radius, 0.0, 1000.0);
-  requireRange("los/detour_radius", detour_radius, 0.0, 1000.0);
-  requireRange("los/approach_distance", approach_distance, 0.0, 1e4);
-  requireRange("los/approach_speed", approach_speed, 0.0, 20.0);
+const ParamTable<LosParams>& LosParams::table() {
+  using P = LosParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("kp", &P::kp, 1e-4, 10.0, "1/m", "look-ahead gain 1/Delta (Table 4.1 LOS K_P)")
+      .number("ki", &P::ki, 0.0, 1.0, "1/(m s)", "ILOS integral gain (Table 4.1 LOS K_I)")
+      .number("integral_limit", &P::integral_limit, 0.0, kPi / 2, "rad", "anti-windup: largest integral steering")
+      .flag("adaptive_crab", &P::adaptive_crab, "estimate the crab (sideslip) angle (adaptive LOS)")
+      .number("crab_gain", &P::crab_gain, 0.0, 1.0, "1/(m s)", "gain of the crab-angle estimate")
+      .number("crab_limit", &P::crab_limit, 0.0, kPi / 2, "rad", "largest |crab angle| estimate")
+      .number("acceptance_radius", &P::acceptance_radius, 0.01, 1000.0, "m",
+              "circle (USV, 2 L_USV) or sphere (AUV) of acceptance")
+      .flag("sphere", &P::sphere, "3-D sphere of acceptance (AUV) instead of the 2-D circle")
+      .number("surge_speed", &P::surge_speed, 0.0, 20.0, "m/s", "cruise surge reference")
+      .number("min_leg_length", &P::min_leg_length, 1e-6, 10.0, "m", "closer consecutive waypoints are merged")
+      .number("final_radius", &P::final_radius, 0.0, 1000.0, "m",
+              "the last waypoint is reached within this (0: acceptance_radius)")
+      .number("detour_radius", &P::detour_radius, 0.0, 1000.0, "m",
+              "safety-box corners are reached within this (0: acceptance_radius)")
+      .number("approach_distance", &P::approach_distance, 0.0, 1e4, "m",
+              "slow down over this distance before the last waypoint (0: off)")
+      .number("approach_speed", &P::approach_speed, 0.0, 20.0, "m/s", "surge reference at the last waypoint");
+  return t;
+}
+
+void LosParams::validate() const { table().validate(*this, "los/"); }
+
+MotionReference referenceOf(const LosOutput& o) {
+  MotionReference r;
+  r.heading = o.desired_heading;
+  r.surge = o.desired_surge;
+  r.depth = o.desired_depth;
+  r.path_angle = o.path_angle;
+  switch (o.mode) {
+    case Mode::kFollowPath:
+      r.mode = ReferenceMode::kFollow;
+      r.point = o.path_point;
+      break;
+    case Mode::kStationKeeping:
+    case Mode::kHoldFault:
+      r.mode = ReferenceMode::kHold;
+      r.point = o.hold_position;
+      break;
+    default:
+      r.mode = ReferenceMode::kIdle;
+  }
+  return r;
 }
 
 double legGeometry(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p, double* e,

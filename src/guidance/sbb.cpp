@@ -77,14 +77,21 @@ std::vector<Rect> merge(std::vector<Rect> rs, double corridor) {
 
 }  // namespace
 
-void SbbParams::validate() const {
-  requireRange("sbb/safety_x", safety_x, 0.0, 1000.0);
-  requireRange("sbb/safety_y", safety_y, 0.0, 1000.0);
-  requireRange("sbb/corridor", corridor, 0.0, 100.0);
-  requireRange("sbb/max_offset", max_offset, 0.0, 10000.0);
-  requireRange("sbb/stop_margin", stop_margin, 0.0, 100.0);
-  requireRange("sbb/approach", approach, 0.0, 1000.0);
+const ParamTable<SbbParams>& SbbParams::table() {
+  using P = SbbParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("safety_x", &P::safety_x, 0.0, 1000.0, "m", "safety distance along the path d_dist_x (eq. 4.5)")
+      .number("safety_y", &P::safety_y, 0.0, 1000.0, "m", "safety distance across the path d_dist_y (eq. 4.5)")
+      .number("corridor", &P::corridor, 0.0, 100.0, "m", "half width swept by the vehicle around its path")
+      .number("max_offset", &P::max_offset, 0.0, 10000.0, "m",
+              "navigable half width around the route; a side beyond it is unsafe")
+      .number("stop_margin", &P::stop_margin, 0.0, 100.0, "m", "blocked: the path ends this far before the box")
+      .number("approach", &P::approach, 0.0, 1000.0, "m",
+              "route waypoints this close to a detour corner are dropped (gentle run-in; 0 = thesis)");
+  return t;
 }
+
+void SbbParams::validate() const { table().validate(*this, "sbb/"); }
 
 bool SbbBox::contains(const Eigen::Vector2d& p, double margin) const {
   const LegFrame f{corners[0], Eigen::Vector2d(std::cos(path_angle), std::sin(path_angle)),

@@ -1,5 +1,6 @@
-// AUV mission: publishes the coverage path, turns sonar targets into the first confirmed detection, then stops
-// the vehicle (empty path) and publishes /target in map_ned with its WGS84 position for the USV (relayed).
+// AUV mission: mission::AuvMission fed the sonar targets and guidance's status on a timer; publishes the path
+// it asks for (the coverage, then an empty path: stop), and the confirmed target on /target in map_ned with its
+// WGS84 position for the USV (relayed). Thin: parameters, messages, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <nodelet/nodelet.h>
 #include <offshore_gnc/GuidanceStatus.h>
@@ -25,24 +26,14 @@ class AuvMissionNodelet : public nodelet::Nodelet {
     mission::AuvMissionParams mp;
     geo::LatLonAlt origin;
     try {
-      mp.confirm_detections = p.integer("confirm_detections", mp.confirm_detections, 1, 100);
-      mp.confirm_radius = p.number("confirm_radius", mp.confirm_radius, 0.1, 50);
-      mp.detection_max_age = p.number("detection_max_age", mp.detection_max_age, 1, 1e5);
+      ros_util::readParams(p, mission::AuvMissionParams::table(), mp);
       // the coverage area comes from the mission config (~coverage) or, in simulation, the scenario file
       // loaded into ~scenario (its auv/coverage section)
-      const std::string c =
-          getPrivateNodeHandle().hasParam("scenario/auv/coverage") ? "scenario/auv/coverage/" : "coverage/";
-      area_.north_min = p.requiredNumber(c + "north_min", -1e4, 1e4);
-      area_.north_max = p.requiredNumber(c + "north_max", -1e4, 1e4);
-      area_.east_min = p.requiredNumber(c + "east_min", -1e4, 1e4);
-      area_.east_max = p.requiredNumber(c + "east_max", -1e4, 1e4);
-      area_.depth = p.requiredNumber(c + "depth", 0, 1000);
-      area_.spacing = p.number(c + "spacing", 5.0, 0.5, 1000);
-      start_delay_ = p.number("start_delay", 2.0, 0, 3600);
+      const bool sc = getPrivateNodeHandle().hasParam("scenario/auv/coverage");
+      ros_util::readParams(p, mission::CoverageArea::table(), mp.coverage, sc ? "scenario/auv/coverage/" : "coverage/");
       origin.lat_deg = vehicle.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
       origin.lon_deg = vehicle.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
       mission_ = std::make_unique<mission::AuvMission>(mp);
-      if (mission::coveragePath(area_).empty()) throw ConfigError("parameter '~coverage' is an empty rectangle");
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -65,57 +56,47 @@ class AuvMissionNodelet : public nodelet::Nodelet {
   void onTimer(const ros::TimerEvent&) {
     const ros::Time now = ros::Time::now();
     if (now.isZero()) return;  // simulated time not running yet
-    if (first_.isZero()) first_ = now;
-    if (mission_->phase() == mission::AuvPhase::Idle && (now - first_).toSec() >= start_delay_) {
-      mission_->start(now.toSec());
-      const auto pts = mission::coveragePath(area_);
-      path_pub_.publish(mission_ros::toPath(pts, now));
-      NODELET_INFO("coverage started: %zu waypoints at %.1f m depth", pts.size(), area_.depth);
-    }
+    mission_->tick(now.toSec());
+    publishOutputs();
     publishStatus();
     updater_->update();
   }
 
   void onTargets(const TargetArray::ConstPtr& msg) {
-    if (mission_->phase() != mission::AuvPhase::Coverage) return;
-    for (const auto& t : msg->targets) {
-      const Eigen::Vector3d p(t.origin.x, t.origin.y, t.origin.z);
-      if (mission_->onDetection(p, msg->header.stamp.toSec())) {
-        found();
-        return;
-      }
-    }
+    for (const auto& t : msg->targets)
+      if (mission_->onDetection({t.origin.x, t.origin.y, t.origin.z}, msg->header.stamp.toSec())) break;
+    publishOutputs();
   }
 
   void onGuidance(const GuidanceStatus::ConstPtr& s) {
-    // end of the coverage path: guidance switches from path following to holding at the last waypoint
-    if (s->mode == GuidanceStatus::MODE_FOLLOW_PATH) following_ = true;
-    if (following_ && s->mode == GuidanceStatus::MODE_STATION_KEEPING && mission_->phase() == mission::AuvPhase::Coverage) {
-      mission_->onCoverageFinished(s->header.stamp.toSec());
-      path_pub_.publish(mission_ros::toPath({}, ros::Time::now()));  // stop
-      NODELET_WARN("%s", mission_->detail().c_str());
-      publishStatus();
-    }
+    mission_->onGuidance(static_cast<guidance::Mode>(s->mode), s->header.stamp.toSec());
+    publishOutputs();
   }
 
-  void found() {
-    const Eigen::Vector3d p = *mission_->target();
-    path_pub_.publish(mission_ros::toPath({}, ros::Time::now()));  // stop: thrusters off
-    Target t;
-    t.header.stamp = ros::Time::now();
-    t.header.frame_id = "map_ned";
-    t.source = Target::SOURCE_SONAR;
-    t.origin.x = t.centroid.x = t.nearest.x = p.x();
-    t.origin.y = t.centroid.y = t.nearest.y = p.y();
-    t.origin.z = t.centroid.z = t.nearest.z = p.z();
-    t.confidence = 1.0f;
-    const geo::LatLonAlt ll = frame_->toGeodetic(p);
-    t.latitude = ll.lat_deg;
-    t.longitude = ll.lon_deg;
-    t.depth = p.z();
-    target_pub_.publish(t);
-    NODELET_INFO("%s (%.6f N %.6f E)", mission_->detail().c_str(), ll.lat_deg, ll.lon_deg);
-    publishStatus();
+  void publishOutputs() {
+    const auto path = mission_->takePath();
+    if (path) {
+      path_pub_.publish(mission_ros::toPath(*path, ros::Time::now()));
+      if (!path->empty()) NODELET_INFO("coverage started: %zu waypoints", path->size());
+      else if (mission_->phase() == mission::AuvPhase::NoTarget) NODELET_WARN("%s", mission_->detail().c_str());
+    }
+    if (const auto p = mission_->takeTarget()) {
+      Target t;
+      t.header.stamp = ros::Time::now();
+      t.header.frame_id = "map_ned";
+      t.source = Target::SOURCE_SONAR;
+      t.origin.x = t.centroid.x = t.nearest.x = p->x();
+      t.origin.y = t.centroid.y = t.nearest.y = p->y();
+      t.origin.z = t.centroid.z = t.nearest.z = p->z();
+      t.confidence = 1.0f;
+      const geo::LatLonAlt ll = frame_->toGeodetic(*p);
+      t.latitude = ll.lat_deg;
+      t.longitude = ll.lon_deg;
+      t.depth = p->z();
+      target_pub_.publish(t);
+      NODELET_INFO("%s (%.6f N %.6f E)", mission_->detail().c_str(), ll.lat_deg, ll.lon_deg);
+    }
+    if (path) publishStatus();
   }
 
   void publishStatus() {
@@ -124,10 +105,6 @@ class AuvMissionNodelet : public nodelet::Nodelet {
                                             ph == mission::AuvPhase::TargetFound));
   }
 
-  mission::CoverageArea area_;
-  double start_delay_ = 2.0;
-  bool following_ = false;
-  ros::Time first_;
   std::unique_ptr<mission::AuvMission> mission_;
   std::unique_ptr<geo::LocalNed> frame_;
   ros::Publisher path_pub_, target_pub_, status_pub_;

@@ -15,10 +15,39 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }
 
 // ------------------------------------------------------------------------------------------------- AUV
+const ParamTable<CoverageArea>& CoverageArea::table() {
+  using P = CoverageArea;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("north_min", &P::north_min, -1e5, 1e5, "m", "southern edge of the search area (local NED)")
+      .number("north_max", &P::north_max, -1e5, 1e5, "m", "northern edge")
+      .number("east_min", &P::east_min, -1e5, 1e5, "m", "western edge")
+      .number("east_max", &P::east_max, -1e5, 1e5, "m", "eastern edge")
+      .number("depth", &P::depth, 0.0, 1000.0, "m", "depth of the coverage")
+      .number("spacing", &P::spacing, 0.5, 1000.0, "m", "distance between the lawnmower's tracks");
+  return t;
+}
+
+void CoverageArea::validate() const {
+  table().validate(*this, "coverage/");
+  if (!(north_max > north_min) || !(east_max >= east_min))
+    throw ConfigError("parameter 'coverage' is an empty rectangle (north " + std::to_string(north_min) + ".." +
+                      std::to_string(north_max) + ", east " + std::to_string(east_min) + ".." +
+                      std::to_string(east_max) + ")");
+}
+
+const ParamTable<AuvMissionParams>& AuvMissionParams::table() {
+  using P = AuvMissionParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .integer("confirm_detections", &P::confirm_detections, 1, 100, "sonar sweeps that must see the same object")
+      .number("confirm_radius", &P::confirm_radius, 0.1, 50.0, "m", "detections closer than this are one object")
+      .number("detection_max_age", &P::detection_max_age, 1.0, 1e5, "s", "unconfirmed detections older are forgotten")
+      .number("start_delay", &P::start_delay, 0.0, 3600.0, "s", "the search starts this long after start-up");
+  return t;
+}
+
 void AuvMissionParams::validate() const {
-  requireRange("mission/confirm_detections", confirm_detections, 1, 100);
-  requireRange("mission/confirm_radius", confirm_radius, 0.1, 50.0);
-  requireRange("mission/detection_max_age", detection_max_age, 1.0, 1e5);
+  table().validate(*this, "mission/");
+  coverage.validate();
 }
 
 const char* toString(AuvPhase p) {
@@ -33,10 +62,39 @@ const char* toString(AuvPhase p) {
 
 AuvMission::AuvMission(const AuvMissionParams& p) : p_(p), detection_time_(kNaN) { p_.validate(); }
 
+void AuvMission::tick(double t) {
+  if (!ticked_) {
+    ticked_ = true;
+    first_tick_ = t;
+  }
+  if (phase_ == AuvPhase::Idle && t - first_tick_ >= p_.start_delay) start(t);
+}
+
 void AuvMission::start(double t) {
   if (phase_ != AuvPhase::Idle) return;
   phase_ = AuvPhase::Coverage;
   start_time_ = t;
+  path_due_ = coveragePath(p_.coverage);
+}
+
+void AuvMission::stop() { path_due_ = std::vector<Eigen::Vector3d>(); }  // guidance idle: thrusters off
+
+void AuvMission::onGuidance(guidance::Mode mode, double t) {
+  if (phase_ != AuvPhase::Coverage) return;
+  if (mode == guidance::Mode::kFollowPath) following_ = true;
+  if (following_ && mode == guidance::Mode::kStationKeeping) onCoverageFinished(t);
+}
+
+std::optional<std::vector<Eigen::Vector3d>> AuvMission::takePath() {
+  auto p = std::move(path_due_);
+  path_due_.reset();
+  return p;
+}
+
+std::optional<Eigen::Vector3d> AuvMission::takeTarget() {
+  auto p = target_due_;
+  target_due_.reset();
+  return p;
 }
 
 bool AuvMission::onDetection(const Eigen::Vector3d& p, double t) {
@@ -66,14 +124,17 @@ bool AuvMission::onDetection(const Eigen::Vector3d& p, double t) {
   best->n += 1;
   best->last_t = t;
   if (best->n < p_.confirm_detections) return false;
-  target_ = best->mean();
+  target_ = target_due_ = best->mean();
   detection_time_ = t - start_time_;
   phase_ = AuvPhase::TargetFound;
+  stop();
   return true;
 }
 
 void AuvMission::onCoverageFinished(double /*t*/) {
-  if (phase_ == AuvPhase::Coverage) phase_ = AuvPhase::NoTarget;
+  if (phase_ != AuvPhase::Coverage) return;
+  phase_ = AuvPhase::NoTarget;
+  stop();
 }
 
 std::string AuvMission::detail() const {
@@ -91,12 +152,21 @@ std::string AuvMission::detail() const {
 }
 
 // ------------------------------------------------------------------------------------------------- USV
-void UsvMissionParams::validate() const {
-  requireRange("mission/waypoint_spacing", waypoint_spacing, 0.5, 1000.0);
-  requireRange("mission/standoff", standoff, 0.0, 500.0);
-  requireRange("mission/min_distance", min_distance, 0.0, 100.0);
-  requireRange("mission/peer_timeout", peer_timeout, 1.0, 1e5);
+const ParamTable<UsvMissionParams>& UsvMissionParams::table() {
+  using P = UsvMissionParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("waypoint_spacing", &P::waypoint_spacing, 0.5, 1000.0, "m",
+              "straight path to the target with a waypoint every this many metres (paper 3.2.3)")
+      .number("standoff", &P::standoff, 0.0, 500.0, "m", "stop this far short of the target")
+      .number("min_distance", &P::min_distance, 0.0, 100.0, "m", "closer than this after the stand-off: no transit")
+      .number("peer_timeout", &P::peer_timeout, 1.0, 1e5, "s",
+              "AUV side silent this long before a target came: PEER_LOST, keep holding")
+      .number("manual_timeout", &P::manual_timeout, 0.05, 60.0, "s",
+              "manual control is released this long after its last command");
+  return t;
 }
+
+void UsvMissionParams::validate() const { table().validate(*this, "mission/"); }
 
 const char* toString(UsvPhase p) {
   switch (p) {
@@ -120,17 +190,41 @@ std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a) {
                              a.spacing, a.depth);
 }
 
-UsvMission::UsvMission(const UsvMissionParams& p) : p_(p) { p_.validate(); }
+UsvMission::UsvMission(const UsvMissionParams& p) : p_(p), distance_to_go_(kNaN) { p_.validate(); }
 
-void UsvMission::onPose(const Eigen::Vector2d& ned, double t) {
-  if (!ned.allFinite()) {
+void UsvMission::onPose(const Eigen::Vector2d& ned, double heading, double t) {
+  if (!ned.allFinite() || !std::isfinite(heading)) {
     counters_.increment("pose_not_finite");
     return;
   }
   pose_ = ned;
-  if (!station_) station_ = ned;  // station keeping starts where the vehicle is
+  heading_ = heading;
+  if (!station_) {  // station keeping (dynamic positioning) where the mission starts, until a target arrives
+    station_ = ned;
+    path_due_ = holdPath(ned, heading);
+  }
   tick(t);
 }
+
+void UsvMission::onGuidance(guidance::Mode mode, double distance_to_go, double t) {
+  distance_to_go_ = distance_to_go;
+  if (phase_ != UsvPhase::Transit) return;
+  if (mode == guidance::Mode::kFollowPath) following_ = true;
+  if (following_ && mode == guidance::Mode::kStationKeeping) onPathFinished(t);
+}
+
+void UsvMission::onManualCommand(double t) {
+  last_manual_ = t;
+  onManual(true, t);
+}
+
+std::optional<std::vector<Eigen::Vector2d>> UsvMission::takePath() {
+  auto p = std::move(path_due_);
+  path_due_.reset();
+  return p;
+}
+
+double UsvMission::distanceToGo() const { return phase() == UsvPhase::Transit ? distance_to_go_ : kNaN; }
 
 bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
   onPeerAlive(t);
@@ -154,6 +248,7 @@ bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
     path_.clear();
     phase_ = UsvPhase::Arrived;
     ++path_version_;
+    path_due_ = holdPath(*station_, heading_);
     return false;
   }
   path_.clear();
@@ -162,7 +257,9 @@ bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
     path_.push_back(w.head<2>());
   station_ = goal;
   phase_ = UsvPhase::Transit;
+  following_ = false;
   ++path_version_;
+  path_due_ = path_;
   return true;
 }
 
@@ -186,6 +283,7 @@ void UsvMission::tick(double t) {
     peer_seen_ = true;
     last_peer_ = t;
   }
+  if (manual_ && t - last_manual_ > p_.manual_timeout && last_manual_ > -1e300) onManual(false, t);
   // Before a target came, a silent AUV side means the mission cannot go on: hold position and say so.
   if (phase_ == UsvPhase::StationKeeping && !target_ && t - last_peer_ > p_.peer_timeout) phase_ = UsvPhase::PeerLost;
 }

@@ -1,6 +1,7 @@
-// USV mission: station keeping until /target arrives (relayed from the AUV), then a straight path with a
-// waypoint every 10 m to the stand-off point (the SBB planner in guidance inserts the avoidance), then station
-// keeping. Manual joystick or steering wheel commands suspend it; a silent AUV side is reported.
+// USV mission: mission::UsvMission fed the navigation pose, /target (relayed from the AUV), guidance's status,
+// manual commands and the relay's link status; publishes the path it asks for (station keeping where it
+// starts, then the straight transit with a waypoint every 10 m: the SBB planner in guidance inserts the
+// avoidance), its status and the received target for rviz. Thin: parameters, messages, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
@@ -12,8 +13,8 @@
 
 #include <memory>
 
-#include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/mission/mission.h"
+#include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 #include "ros_mission.h"
@@ -26,11 +27,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     ros_util::ParamReader p(getPrivateNodeHandle());
     mission::UsvMissionParams mp;
     try {
-      mp.waypoint_spacing = p.number("waypoint_spacing", mp.waypoint_spacing, 0.5, 1000);
-      mp.standoff = p.number("standoff", mp.standoff, 0, 500);
-      mp.min_distance = p.number("min_distance", mp.min_distance, 0, 100);
-      mp.peer_timeout = p.number("peer_timeout", mp.peer_timeout, 1, 1e5);
-      manual_timeout_ = p.number("manual_timeout", 1.0, 0.05, 60);
+      ros_util::readParams(p, mission::UsvMissionParams::table(), mp);
       mission_ = std::make_unique<mission::UsvMission>(mp);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
@@ -57,51 +54,43 @@ class UsvMissionNodelet : public nodelet::Nodelet {
   }
 
   void onOdom(const nav_msgs::Odometry::ConstPtr& o) {
-    // odometry is in map (ENU): north = y, east = x; ENU yaw -> NED heading
-    const auto& q = o->pose.pose.orientation;
-    const double yaw_enu = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
-    mission_->onPose({o->pose.pose.position.y, o->pose.pose.position.x}, o->header.stamp.toSec());
-    if (!holding_published_ && mission_->pathVersion() == 0 && mission_->stationPoint()) {
-      // dynamic positioning where the mission starts, until a target arrives (paper 3.2.3)
-      publishPath(mission::holdPath(*mission_->stationPoint(), geo::enuYawToNed(yaw_enu)));
-      holding_published_ = true;
-    }
+    const VehicleState s = ros_util::stateFromOdom(*o);
+    mission_->onPose(s.position.head<2>(), s.yaw, o->header.stamp.toSec());
+    publishPath();
   }
 
-  void publishPath(const std::vector<Eigen::Vector2d>& path) {
-    std::vector<Eigen::Vector3d> pts;
-    for (const auto& w : path) pts.emplace_back(w.x(), w.y(), 0.0);
-    path_pub_.publish(mission_ros::toPath(pts, ros::Time::now()));
+  void publishPath() {
+    if (auto path = mission_->takePath()) {
+      std::vector<Eigen::Vector3d> pts;
+      for (const auto& w : *path) pts.emplace_back(w.x(), w.y(), 0.0);
+      path_pub_.publish(mission_ros::toPath(pts, ros::Time::now()));
+    }
   }
 
   void onTarget(const Target::ConstPtr& t) {
     const int before = mission_->pathVersion();
-    const bool transit = mission_->onTarget({t->origin.x, t->origin.y}, ros::Time::now().toSec());
+    mission_->onTarget({t->origin.x, t->origin.y}, ros::Time::now().toSec());
     if (mission_->pathVersion() != before) {
       markers_pub_.publish(mission_ros::targetMarker(t->origin.x, t->origin.y, t->origin.z, ros::Time::now()));
-      publishPath(mission_->path().empty() ? mission::holdPath(*mission_->stationPoint(), 0.0) : mission_->path());
-      following_ = false;
       NODELET_INFO("target received: %s", mission_->detail().c_str());
-    } else if (!transit) {
+    } else {
       NODELET_DEBUG("target ignored: %s", mission_->detail().c_str());
     }
+    publishPath();
     publishStatus();
   }
 
   void onGuidance(const GuidanceStatus::ConstPtr& s) {
-    distance_to_go_ = s->distance_to_go;
-    if (mission_->phase() != mission::UsvPhase::Transit) return;
-    if (s->mode == GuidanceStatus::MODE_FOLLOW_PATH) following_ = true;
-    if (following_ && s->mode == GuidanceStatus::MODE_STATION_KEEPING) {
-      mission_->onPathFinished(s->header.stamp.toSec());
+    const auto before = mission_->phase();
+    mission_->onGuidance(static_cast<guidance::Mode>(s->mode), s->distance_to_go, s->header.stamp.toSec());
+    if (mission_->phase() != before) {
       NODELET_INFO("%s", mission_->detail().c_str());
       publishStatus();
     }
   }
 
   void onManual(const JoystickCommand::ConstPtr& c) {
-    last_manual_ = ros::Time::now();
-    if (c->priority >= JoystickCommand::PRIORITY_MANUAL) mission_->onManual(true, last_manual_.toSec());
+    if (c->priority >= JoystickCommand::PRIORITY_MANUAL) mission_->onManualCommand(ros::Time::now().toSec());
   }
 
   void onLink(const LinkStatus::ConstPtr& l) {
@@ -111,7 +100,6 @@ class UsvMissionNodelet : public nodelet::Nodelet {
   void onTimer(const ros::TimerEvent&) {
     const ros::Time now = ros::Time::now();
     if (now.isZero()) return;
-    if (!last_manual_.isZero() && (now - last_manual_).toSec() > manual_timeout_) mission_->onManual(false, now.toSec());
     mission_->tick(now.toSec());
     publishStatus();
     updater_->update();
@@ -119,14 +107,10 @@ class UsvMissionNodelet : public nodelet::Nodelet {
 
   void publishStatus() {
     const auto ph = mission_->phase();
-    const double dtg = ph == mission::UsvPhase::Transit ? distance_to_go_ : std::numeric_limits<double>::quiet_NaN();
     status_pub_.publish(mission_ros::status("usv", mission::toString(ph), mission_->detail(), mission_->finished(),
-                                            ph == mission::UsvPhase::Arrived, dtg));
+                                            ph == mission::UsvPhase::Arrived, mission_->distanceToGo()));
   }
 
-  double manual_timeout_ = 1.0, distance_to_go_ = std::numeric_limits<double>::quiet_NaN();
-  bool following_ = false, holding_published_ = false;
-  ros::Time last_manual_;
   std::unique_ptr<mission::UsvMission> mission_;
   ros::Publisher path_pub_, status_pub_, markers_pub_;
   ros::Subscriber target_sub_, odom_sub_, guidance_sub_, manual_sub_, link_sub_;

@@ -1,6 +1,7 @@
-// USBL node: pings the AUV's SeaTrac beacon over the serial line, decodes the replies and publishes each fix
-// with the AUV's position in map_ned and WGS84, geo-referenced with the USV's GPS position and heading at the
-// time of the fix (buffered /usv_gps, /usv_heading) and the transceiver's mounting; quality gates in the core.
+// USBL node: runs usbl::TransceiverSession on the serial line (pings to the AUV's SeaTrac beacon, the acoustic
+// data channel), decodes the replies and publishes each fix with the AUV's position in map_ned and WGS84,
+// geo-referenced by usbl::Positioner with the USV's GPS position and heading at the time of the fix (buffered
+// /usv_gps, /usv_heading) and the transceiver's mounting. Thin: parameters, the I/O thread, messages.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/QuaternionStamped.h>
 #include <nodelet/nodelet.h>
@@ -25,6 +26,7 @@
 #include "offshore_gnc/usbl/positioning.h"
 #include "offshore_gnc/usbl/seatrac.h"
 #include "offshore_gnc/usbl/serial_port.h"
+#include "offshore_gnc/usbl/session.h"
 #include "ros_usbl.h"
 
 namespace offshore_gnc {
@@ -46,14 +48,9 @@ class UsblNodelet : public nodelet::Nodelet {
       const std::string port = p.text("port", "/dev/ttyUSB0");
       const int baud = p.integer("baud", 115200, 9600, 230400);
       retry_ = p.number("reconnect_period", 1.0, 0.05, 60);
-      local_id_ = static_cast<std::uint8_t>(p.integer("local_beacon_id", 1, 1, 15));
-      remote_id_ = static_cast<std::uint8_t>(p.integer("remote_beacon_id", 2, 1, 15));
-      ping_period_ = 1.0 / p.number("ping_rate", 0.5, 0.01, 5.0);
-      reply_timeout_ = p.number("reply_timeout", 3.0, 0.1, 30.0);
-      const std::string type = p.choice("ping_msg_type", "REQU", {"REQ", "REQU", "REQX"});
-      msg_type_ = type == "REQ" ? usbl::MSG_REQ : type == "REQX" ? usbl::MSG_REQX : usbl::MSG_REQU;
-      const std::string dtype = p.choice("data_msg_type", "REQ", {"OWAY", "REQ"});
-      data_msg_type_ = dtype == "OWAY" ? usbl::MSG_OWAY : usbl::MSG_REQ;
+      usbl::SessionParams sp;
+      ros_util::readParams(p, usbl::SessionParams::table(), sp);
+      session_ = std::make_unique<usbl::TransceiverSession>(sp);
       lim.max_fit_error = p.number("max_fit_error", 2.0, 0.01, 300);
       lim.max_age_s = p.number("max_age", 2.0, 0.01, 60);
       lim.max_pose_gap_s = p.number("max_pose_gap", 0.5, 0.01, 10);
@@ -81,7 +78,6 @@ class UsblNodelet : public nodelet::Nodelet {
     // DAT_RECEIVE payloads in.
     data_in_pub_ = nh.advertise<std_msgs::UInt8MultiArray>("/auv/usbl/data_in", 10);
     data_out_sub_ = nh.subscribe("/auv/usbl/data_out", 10, &UsblNodelet::onDataOut, this);
-    ping_timer_ = nh.createTimer(ros::Duration(ping_period_), [this](const ros::TimerEvent&) { ping_due_ = true; });
 
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("seatrac:" + port_->path());
@@ -90,7 +86,11 @@ class UsblNodelet : public nodelet::Nodelet {
         s.summary(diagnostic_msgs::DiagnosticStatus::OK, "serial open");
       else
         s.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "serial closed: " + last_port_error());
-      ros_util::addCounters(s, counters_, {"ping_errors", "no_reply", "bad_gps", "data_too_long", "data_dropped"});
+      ros_util::addCounters(s, counters_, {"bad_gps", "bad_heading", "bad_pressure"});
+      {
+        std::lock_guard<std::mutex> lock(session_mutex_);
+        ros_util::addCounters(s, session_->counters(), {"ping_errors", "no_reply", "data_too_long", "data_dropped"});
+      }
       ros_util::addCounters(s, port_->counters(), {"hangups", "io_errors"});
       ros_util::addCounters(s, decoder_.counters(),
                             {"bad_crc", "odd_hex_length", "non_hex", "unknown_cid", "truncated", "trailing_bytes",
@@ -101,7 +101,8 @@ class UsblNodelet : public nodelet::Nodelet {
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->update(); });
     running_ = true;
     io_ = std::thread([this] { ioLoop(); });
-    NODELET_INFO("USBL on %s: pinging beacon %d every %.2f s", port_->path().c_str(), remote_id_, ping_period_);
+    NODELET_INFO("USBL on %s: pinging beacon %d every %.2f s", port_->path().c_str(), session_->params().remote_id,
+                 1.0 / session_->params().ping_rate);
   }
 
   std::string last_port_error() {
@@ -109,8 +110,7 @@ class UsblNodelet : public nodelet::Nodelet {
     return last_error_;
   }
 
-  // The only thread touching the serial port: reads replies, and sends a ping when one is due and no
-  // transaction is open (the transceiver handles one at a time).
+  // The only thread touching the serial port: reads replies into the session, writes what it says is due.
   void ioLoop() {
     std::uint8_t buf[512];
     std::vector<usbl::StreamDecoder::Event> events;
@@ -134,26 +134,15 @@ class UsblNodelet : public nodelet::Nodelet {
         decoder_.feed(buf, n, events);
         for (const auto& e : events) handle(e, now);
       }
-      if (awaiting_ && (now - ping_sent_).toSec() > reply_timeout_) {
-        awaiting_ = false;
-        counters_.increment("no_reply");
+      if (!port_->isOpen()) continue;
+      std::optional<usbl::Message> m;
+      {
+        std::lock_guard<std::mutex> lock(session_mutex_);
+        m = session_->due(now.toSec());
       }
-      std::vector<std::uint8_t> data;
-      if (!awaiting_ && port_->isOpen() && popData(data)) {
-        const usbl::Message dat{true, usbl::DatSend{remote_id_, data_msg_type_, data}};
-        if (port_->write(usbl::encodeFrame(dat))) {
-          awaiting_ = data_msg_type_ != usbl::MSG_OWAY;
-          ping_sent_ = now;
-          counters_.increment("data_sent");
-        }
-      } else if (ping_due_ && !awaiting_ && port_->isOpen()) {
-        ping_due_ = false;
-        const usbl::Message ping{true, usbl::PingSend{remote_id_, msg_type_}};
-        if (port_->write(usbl::encodeFrame(ping))) {
-          awaiting_ = true;
-          ping_sent_ = now;
-          counters_.increment("pings_sent");
-        }
+      if (m && port_->write(usbl::encodeFrame(*m))) {
+        std::lock_guard<std::mutex> lock(session_mutex_);
+        session_->sent(*m, now.toSec());
       }
     }
   }
@@ -163,29 +152,19 @@ class UsblNodelet : public nodelet::Nodelet {
       NODELET_WARN_THROTTLE(5.0, "USBL frame rejected (%s): %.60s", e.reason.c_str(), e.line.c_str());
       return;
     }
-    const auto& body = e.message->body;
-    if (auto s = std::get_if<usbl::StatusReply>(&body)) {
-      const bool data = s->cid == usbl::CID_DAT_ERROR || s->cid == usbl::CID_DAT_SEND;
-      if (s->cid == usbl::CID_PING_ERROR || s->cid == usbl::CID_DAT_ERROR) {
-        awaiting_ = false;
-        counters_.increment(std::string(data ? "data" : "ping") +
-                            (s->status == usbl::kStatusXcvrRespTimeout ? "_timeouts" : "_errors"));
-      } else if ((s->cid == usbl::CID_PING_SEND || data) && s->status != usbl::kStatusOk) {
-        awaiting_ = false;
-        counters_.increment(data ? "data_errors" : "ping_errors");
-        NODELET_WARN_THROTTLE(5.0, "%s refused with status 0x%02X", usbl::cidName(s->cid), s->status);
-      }
-    } else if (auto f = std::get_if<usbl::FixMessage>(&body)) {
-      if (f->fix.src_id == remote_id_) awaiting_ = false;
-      publishFix(f->fix, now);
-    } else if (auto d = std::get_if<usbl::DatReceive>(&body)) {
-      if (d->fix.src_id == remote_id_) awaiting_ = false;
-      std_msgs::UInt8MultiArray m;
-      m.data = d->data;
-      data_in_pub_.publish(m);
-      counters_.increment("data_received");
-      publishFix(d->fix, now);  // a data message is also an acoustic fix of its sender
+    if (auto st = std::get_if<usbl::StatusReply>(&e.message->body); st && st->status != usbl::kStatusOk)
+      NODELET_WARN_THROTTLE(5.0, "%s refused with status 0x%02X", usbl::cidName(st->cid), st->status);
+    usbl::SessionEvent ev;
+    {
+      std::lock_guard<std::mutex> lock(session_mutex_);
+      ev = session_->handle(e, now.toSec());
     }
+    if (ev.kind == usbl::SessionEvent::kData) {
+      std_msgs::UInt8MultiArray m;
+      m.data = ev.data;
+      data_in_pub_.publish(m);
+    }
+    if (ev.kind != usbl::SessionEvent::kNone) publishFix(ev.fix, now);
   }
 
   void publishFix(const usbl::AcoFix& f, const ros::Time& now) {
@@ -233,25 +212,9 @@ class UsblNodelet : public nodelet::Nodelet {
   }
 
   void onDataOut(const std_msgs::UInt8MultiArray& m) {
-    if (m.data.empty() || m.data.size() > usbl::kMaxDataPacket) {
-      counters_.increment("data_too_long");
+    std::lock_guard<std::mutex> lock(session_mutex_);
+    if (!session_->queueData(m.data))
       NODELET_WARN_THROTTLE(5.0, "acoustic packet of %zu bytes dropped (1..%zu)", m.data.size(), usbl::kMaxDataPacket);
-      return;
-    }
-    std::lock_guard<std::mutex> lock(data_mutex_);
-    if (data_out_.size() >= 16) {  // the channel carries about one packet per ping cycle: keep the newest
-      data_out_.pop_front();
-      counters_.increment("data_dropped");
-    }
-    data_out_.push_back(m.data);
-  }
-
-  bool popData(std::vector<std::uint8_t>& out) {
-    std::lock_guard<std::mutex> lock(data_mutex_);
-    if (data_out_.empty()) return false;
-    out = std::move(data_out_.front());
-    data_out_.pop_front();
-    return true;
   }
 
   void onGps(const sensor_msgs::NavSatFix& g) {
@@ -287,12 +250,11 @@ class UsblNodelet : public nodelet::Nodelet {
     positioner_->addRemoteDepth(p.header.stamp.toSec(), depth);
   }
 
-  std::uint8_t local_id_ = 1, remote_id_ = 2, msg_type_ = usbl::MSG_REQU, data_msg_type_ = usbl::MSG_REQ;
-  std::mutex data_mutex_;
-  std::deque<std::vector<std::uint8_t>> data_out_;
+  std::mutex session_mutex_;  // session (the I/O thread vs the data_out callback)
+  std::unique_ptr<usbl::TransceiverSession> session_;
   ros::Publisher data_in_pub_;
   ros::Subscriber data_out_sub_;
-  double retry_ = 1.0, ping_period_ = 2.0, reply_timeout_ = 3.0, water_density_ = 1000.0, surface_pressure_ = 101325.0;
+  double retry_ = 1.0, water_density_ = 1000.0, surface_pressure_ = 101325.0;
   std::string frame_id_;
   std::unique_ptr<geo::LocalNed> local_;
   std::unique_ptr<usbl::SerialPort> port_;
@@ -300,15 +262,12 @@ class UsblNodelet : public nodelet::Nodelet {
   std::mutex mutex_;  // positioner (ROS callbacks vs the I/O thread)
   std::unique_ptr<usbl::Positioner> positioner_;
   Counters counters_;
-  std::atomic<bool> running_{false}, ping_due_{false}, port_open_{false};
-  bool awaiting_ = false;  // I/O thread only
-  ros::Time ping_sent_;
+  std::atomic<bool> running_{false}, port_open_{false};
   std::mutex err_mutex_;
   std::string last_error_;
   std::thread io_;
   ros::Publisher fix_pub_;
   ros::Subscriber gps_sub_, heading_sub_, pressure_sub_;
-  ros::Timer ping_timer_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::WallTimer diag_timer_;
 };

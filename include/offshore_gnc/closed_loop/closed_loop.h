@@ -49,8 +49,5 @@ ClosedLoopResult runUsv(const ClosedLoopConfig& cfg, const control::UsvControlPa
 ClosedLoopResult runGirona500(const ClosedLoopConfig& cfg,
                               const control::Girona500ControlParams& ctrl = control::Girona500ControlParams());
 
-// Guidance output -> control reference (also used by the nodelets' GuidanceStatus conversion).
-control::Reference toReference(const guidance::LosOutput& o);
-
 }  // namespace closed_loop
 }  // namespace offshore_gnc

@@ -10,7 +10,7 @@ namespace scenarios {
 ClosedLoopConfig usvStraight(bool adaptive_crab);  // 5 waypoints on a straight line (Fig. 4.11)
 ClosedLoopConfig usvBuoy(bool adaptive_crab);      // straight route with a static buoy on it (Fig. 4.14)
 ClosedLoopConfig auvCoverage(bool adaptive_crab);  // Girona500 lawnmower at constant depth (Fig. 4.19)
-// The route of the simulator rostest (test/rostest/control): config/scenarios/pyhajarvi.yaml's buoy 25 m ahead of
+// The route of the simulator rostest (test/rostest/closed_loop): config/scenarios/pyhajarvi.yaml's buoy 25 m ahead of
 // a boat at rest, waypoints every 40 m, config/guidance/usv.yaml's settings.
 ClosedLoopConfig usvNearBuoy(bool adaptive_crab);
 // Station keeping from rest: the path ends at once, the current sets the boat off (the mission's USV waiting).

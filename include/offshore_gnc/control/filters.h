@@ -6,6 +6,8 @@
 #include <complex>
 #include <vector>
 
+#include "offshore_gnc/common/param_table.h"
+
 namespace offshore_gnc {
 namespace control {
 
@@ -29,6 +31,7 @@ struct FilterParams {
   double tf = 0.1;                               // T_f low-pass time constant [s]; 0 disables it
   double xi = 0.8;                               // notch design parameter (depth at the centre = xi)
   std::vector<double> notch_w = {0.1, 0.2, 0.4}; // centre frequencies [rad/s]; empty disables the notches
+  static const ParamTable<FilterParams>& table();
   void validate() const;
 };
 

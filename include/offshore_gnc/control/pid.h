@@ -1,6 +1,10 @@
 #pragma once
 // PID with derivative on the measurement rate (no derivative kick on reference steps), output saturation and
 // anti-windup (conditional integration + integral clamp). ROS-free.
+#include <string>
+
+#include "offshore_gnc/common/param_table.h"
+
 namespace offshore_gnc {
 namespace control {
 
@@ -8,7 +12,8 @@ struct PidGains {
   double kp = 0.0, ki = 0.0, kd = 0.0;
   double out_limit = 1e9;   // |output| bound
   double i_limit = 1e9;     // |ki * integral| bound
-  void validate(const char* name) const;  // throws ConfigError naming `name`
+  static const ParamTable<PidGains>& table();
+  void validate(const std::string& name) const;  // throws ConfigError naming `name`/field
 };
 
 class Pid {

@@ -13,23 +13,11 @@
 #include "offshore_gnc/control/allocation.h"
 #include "offshore_gnc/control/filters.h"
 #include "offshore_gnc/control/pid.h"
+#include "offshore_gnc/models/reference.h"
 #include "offshore_gnc/models/state.h"
 
 namespace offshore_gnc {
 namespace control {
-
-enum class RefMode { kIdle, kFollow, kHold };
-
-// What control needs from guidance (GuidanceStatus): NED, radians.
-struct Reference {
-  RefMode mode = RefMode::kIdle;
-  double heading = 0.0;                                  // psi_d
-  double surge = 0.0;                                    // u_d [m/s]
-  double depth = 0.0;                                    // AUV depth [m]
-  double path_angle = 0.0;
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();       // kHold: hold point; kFollow: projection on the leg
-  bool valid() const;
-};
 
 struct JoystickOut {
   double surge = 0.0, sway = 0.0, yaw = 0.0;  // -1..1
@@ -47,7 +35,8 @@ struct UsvControlParams {
   // The jets steer only with thrust: at zero surge the bucket is neutral and the nozzles turn nothing. While
   // following a path with the bow more than 30 deg off, the joystick surge is at least this (full range 1).
   double turn_thrust = 0.3;
-  double dt = 0.1;                                       // control period [s]
+  double dt = 0.1;                                       // control period [s] (from the control rate)
+  static const ParamTable<UsvControlParams>& table();
   void validate() const;
 };
 
@@ -56,7 +45,7 @@ class UsvController {
   explicit UsvController(const UsvControlParams& p = UsvControlParams());
   void setParams(const UsvControlParams& p);  // rebuilds the filters on changed filter settings
   const UsvControlParams& params() const { return p_; }
-  JoystickOut update(const VehicleState& s, const Reference& r);  // never NaN; bad input -> neutral
+  JoystickOut update(const VehicleState& s, const MotionReference& r);  // never NaN; bad input -> neutral
   const Counters& counters() const { return counters_; }
   double filteredHeading() const { return yaw_f_; }
 
@@ -76,6 +65,7 @@ struct AcolorControlParams {
   int channel_heave = 3, channel_yaw = 4, channel_surge = 5;  // 1-based RC channels
   int num_channels = 8;
   double dt = 0.1;
+  static const ParamTable<AcolorControlParams>& table();
   void validate() const;
 };
 
@@ -84,7 +74,7 @@ class AcolorController {
   explicit AcolorController(const AcolorControlParams& p = AcolorControlParams());
   void setParams(const AcolorControlParams& p);
   const AcolorControlParams& params() const { return p_; }
-  std::vector<std::uint16_t> update(const VehicleState& s, const Reference& r);  // PWM per channel
+  std::vector<std::uint16_t> update(const VehicleState& s, const MotionReference& r);  // PWM per channel
   const Counters& counters() const { return counters_; }
   static std::uint16_t pwm(double normalised);  // -1..1 -> 1100..1900 us, 1500 neutral
 
@@ -109,6 +99,7 @@ struct Girona500ControlParams {
   ThrustAllocator::CommandFor command_for;  // default: the models' inverse thruster curves
   double dt = 0.1;
   Girona500ControlParams();
+  static const ParamTable<Girona500ControlParams>& table();
   void validate() const;
 };
 
@@ -122,7 +113,7 @@ class Girona500Controller {
   explicit Girona500Controller(const Girona500ControlParams& p = Girona500ControlParams());
   void setParams(const Girona500ControlParams& p);
   const Girona500ControlParams& params() const { return p_; }
-  Girona500Out update(const VehicleState& s, const Reference& r);
+  Girona500Out update(const VehicleState& s, const MotionReference& r);
   const ThrustAllocator& allocator() const { return alloc_; }
   const Counters& counters() const { return counters_; }
 

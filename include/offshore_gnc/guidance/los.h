@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/models/reference.h"
 #include "offshore_gnc/models/state.h"
 
 namespace offshore_gnc {
@@ -38,6 +40,7 @@ struct LosParams {
   double approach_distance = 0.0;  // slow down over this distance to go to the last waypoint (0: no slowdown) [m]
   double approach_speed = 0.3;     // surge reference at the last waypoint when slowing down [m/s]
 
+  static const ParamTable<LosParams>& table();  // names, ranges, units, docs
   void validate() const;           // throws ConfigError naming the value
 };
 
@@ -97,6 +100,10 @@ class LosGuidance {
   double last_yaw_ = 0.0;
   Counters counters_;
 };
+
+// What control is asked to do (models/reference.h): follow the projection on the active leg, hold the end of
+// the path (station keeping) or the last good position (hold fault), or nothing.
+MotionReference referenceOf(const LosOutput& o);
 
 // Cross-track error (eq. 4.12) and along-track distance of `p` on the leg a->b; returns chi_p (eq. 4.11).
 double legGeometry(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p, double* e,

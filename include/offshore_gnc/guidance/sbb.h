@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "offshore_gnc/common/param_table.h"
+
 namespace offshore_gnc {
 namespace guidance {
 
@@ -28,6 +30,7 @@ struct SbbParams {
   double stop_margin = 2.0;   // blocked: the path ends this far before the box [m]
   double approach = 0.0;      // original waypoints closer than this to a detour corner are dropped, so a vehicle
                               // with a large turning circle gets a gentle run-in and run-out (0 = thesis) [m]
+  static const ParamTable<SbbParams>& table();
   void validate() const;
 };
 

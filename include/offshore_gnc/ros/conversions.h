@@ -4,6 +4,7 @@
 #include <geometry_msgs/Quaternion.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <offshore_gnc/GuidanceStatus.h>
 #include <tf2/LinearMath/Quaternion.h>
 #include <tf2/utils.h>
 
@@ -13,6 +14,7 @@
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/models/reference.h"
 #include "offshore_gnc/models/state.h"
 
 namespace offshore_gnc {
@@ -94,6 +96,33 @@ inline geometry_msgs::TransformStamped mountTransform(const std::string& base, c
   t.transform.rotation.z = q.z();
   t.transform.rotation.w = q.w();
   return t;
+}
+
+// GuidanceStatus' reference fields, as the guidance pipeline computed them (a field copy, no decisions).
+inline MotionReference referenceFromStatus(const GuidanceStatus& g) {
+  MotionReference r;
+  r.mode = g.reference_mode == GuidanceStatus::REFERENCE_FOLLOW ? ReferenceMode::kFollow
+           : g.reference_mode == GuidanceStatus::REFERENCE_HOLD ? ReferenceMode::kHold
+                                                                  : ReferenceMode::kIdle;
+  r.heading = g.desired_heading;
+  r.surge = g.desired_surge;
+  r.depth = g.desired_depth;
+  r.path_angle = g.path_angle;
+  r.point = Eigen::Vector3d(g.reference_point.x, g.reference_point.y, g.reference_point.z);
+  return r;
+}
+
+inline void fillReference(const MotionReference& r, GuidanceStatus& g) {
+  g.reference_mode = r.mode == ReferenceMode::kFollow ? GuidanceStatus::REFERENCE_FOLLOW
+                     : r.mode == ReferenceMode::kHold ? GuidanceStatus::REFERENCE_HOLD
+                                                      : GuidanceStatus::REFERENCE_IDLE;
+  g.desired_heading = r.heading;
+  g.desired_surge = r.surge;
+  g.desired_depth = r.depth;
+  g.path_angle = r.path_angle;
+  g.reference_point.x = r.point.x();
+  g.reference_point.y = r.point.y();
+  g.reference_point.z = r.point.z();
 }
 
 }  // namespace ros_util

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/common/validate.h"
 
 namespace offshore_gnc {
@@ -30,11 +31,29 @@ class ParamReader {
                               double hi) const;
 
   const ros::NodeHandle& handle() const { return nh_; }
+  std::string full(const std::string& name) const;
 
  private:
-  std::string full(const std::string& name) const;
   ros::NodeHandle nh_;
 };
+
+// Fills `p` through its table: each parameter present on the server (under `prefix`) replaces the struct's value,
+// checked against the table's range; then the whole struct is validated (cross-field rules).
+template <class P>
+void readParams(const ParamReader& r, const ParamTable<P>& t, P& p, const std::string& prefix = "") {
+  for (const auto& s : t.specs()) {
+    const std::string n = prefix + s.name;
+    switch (s.kind) {
+      case ParamKind::kNumber: s.number(p) = r.number(n, s.number(p), s.lo, s.hi); break;
+      case ParamKind::kInteger:
+        s.integer(p) = r.integer(n, s.integer(p), static_cast<int>(s.lo), static_cast<int>(s.hi));
+        break;
+      case ParamKind::kFlag: s.flag(p) = r.flag(n, s.flag(p)); break;
+      case ParamKind::kNumbers: s.numbers(p) = r.numbers(n, s.numbers(p), s.size, s.lo, s.hi); break;
+      case ParamKind::kChoice: s.choice(p) = r.choice(n, s.choice(p), s.choices); break;
+    }
+  }
+}
 
 }  // namespace ros_util
 }  // namespace offshore_gnc

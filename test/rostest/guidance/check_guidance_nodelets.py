@@ -68,7 +68,11 @@ class GuidanceNodelets(unittest.TestCase):
         self.assertAlmostEqual(s.cross_track_error, 3.0, places=2)  # 3 m east of a north leg = starboard
         self.assertLess(s.desired_heading, 0.0)                     # steer to port
         self.assertEqual(s.header.frame_id, "map_ned")
-        self.assertTrue(math.isnan(s.desired_depth))
+        self.assertEqual(s.desired_depth, 0.0)  # the surface
+        # the reference control follows travels in the status: the projection of the boat on the leg
+        self.assertEqual(s.reference_mode, GuidanceStatus.REFERENCE_FOLLOW)
+        self.assertAlmostEqual(s.reference_point.x, 0.0, delta=0.5)
+        self.assertAlmostEqual(s.reference_point.y, 0.0, places=2)
         # control may still send a neutral command or two from before the status arrived: wait for the first
         # command computed from path following, which must steer to port with thrust ahead
         self.wait("a steering joystick command", lambda: any(j.yaw < 0.0 and j.surge > 0.0 for j in self.joy))
@@ -118,6 +122,10 @@ class GuidanceNodelets(unittest.TestCase):
                   self.latest_status().mode == GuidanceStatus.MODE_STATION_KEEPING)
         self.assertEqual(self.latest_status().desired_surge, 0.0)
         self.assertIn("end of path", self.latest_status().status_text)
+        # station keeping holds the end of the path
+        self.assertEqual(self.latest_status().reference_mode, GuidanceStatus.REFERENCE_HOLD)
+        self.assertAlmostEqual(self.latest_status().reference_point.x, 0.0, places=3)
+        self.assertAlmostEqual(self.latest_status().reference_point.y, 0.0, places=3)
 
 
 if __name__ == "__main__":

@@ -11,9 +11,9 @@ using namespace offshore_gnc::control;
 
 namespace {
 const double kNan = std::numeric_limits<double>::quiet_NaN();
-Reference follow(double heading, double surge = 1.0, double depth = 2.0) {
-  Reference r;
-  r.mode = RefMode::kFollow;
+MotionReference follow(double heading, double surge = 1.0, double depth = 2.0) {
+  MotionReference r;
+  r.mode = ReferenceMode::kFollow;
   r.heading = heading;
   r.surge = surge;
   r.depth = depth;
@@ -35,8 +35,8 @@ TEST(Girona500, AllocationOnTheModelsTcmReproducesTheWrench) {
   Girona500Controller ctrl;
   VehicleState s;
   s.position = Eigen::Vector3d(0, 0, 2);
-  Reference r;
-  r.mode = RefMode::kHold;
+  MotionReference r;
+  r.mode = ReferenceMode::kHold;
   r.point = Eigen::Vector3d(0.05, -0.03, 0);
   r.depth = 2.02;
   r.heading = 0.01;

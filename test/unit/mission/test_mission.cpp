@@ -9,8 +9,20 @@
 using namespace offshore_gnc;
 using namespace offshore_gnc::mission;
 
+namespace {
+// A search area north of the start, as the default scenario's.
+AuvMissionParams auvParams(int confirm = 2, double radius = 2.0, double max_age = 120.0) {
+  AuvMissionParams p;
+  p.confirm_detections = confirm;
+  p.confirm_radius = radius;
+  p.detection_max_age = max_age;
+  p.coverage = {20.0, 60.0, -10.0, 10.0, 3.0, 5.0};
+  return p;
+}
+}  // namespace
+
 TEST(AuvMission, FirstConfirmedDetectionStopsTheSearch) {
-  AuvMission m({2, 2.0, 120.0});
+  AuvMission m(auvParams(2, 2.0, 120.0));
   EXPECT_EQ(m.phase(), AuvPhase::Idle);
   EXPECT_FALSE(m.onDetection({1, 1, 5}, 0.0));  // not started yet
   m.start(10.0);
@@ -28,7 +40,7 @@ TEST(AuvMission, FirstConfirmedDetectionStopsTheSearch) {
 }
 
 TEST(AuvMission, StaleCandidatesAreForgotten) {
-  AuvMission m({2, 2.0, 60.0});
+  AuvMission m(auvParams(2, 2.0, 60.0));
   m.start(0.0);
   EXPECT_FALSE(m.onDetection({5, 5, 5}, 1.0));
   EXPECT_FALSE(m.onDetection({5, 5, 5}, 100.0));  // 99 s later: the first one has expired
@@ -37,7 +49,7 @@ TEST(AuvMission, StaleCandidatesAreForgotten) {
 }
 
 TEST(AuvMission, NoTargetAndBadInput) {
-  AuvMission m;
+  AuvMission m(auvParams());
   m.start(0.0);
   EXPECT_FALSE(m.onDetection({NAN, 0, 0}, 1.0));
   EXPECT_EQ(m.counters().get("detection_not_finite"), 1u);
@@ -46,12 +58,20 @@ TEST(AuvMission, NoTargetAndBadInput) {
   EXPECT_TRUE(m.finished());
   EXPECT_FALSE(m.target().has_value());
   EXPECT_NE(m.detail().find("without a confirmed detection"), std::string::npos);
-  EXPECT_THROW(AuvMission({0, 2.0, 60.0}), ConfigError);
+  EXPECT_THROW(AuvMission(auvParams(0, 2.0, 60.0)), ConfigError);
+  AuvMissionParams no_area = auvParams();
+  no_area.coverage = {};  // nothing configured: refused, naming the rectangle
+  try {
+    AuvMission bad(no_area);
+    FAIL() << "an empty coverage area was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("coverage"), std::string::npos) << e.what();
+  }
 }
 
 TEST(UsvMission, TransitToStandoffThenArrive) {
   UsvMission m({10.0, 3.0, 1.0, 30.0});
-  m.onPose({0, 0}, 0.0);
+  m.onPose({0, 0}, 0.0, 0.0);
   EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
   EXPECT_TRUE(m.path().empty());
   EXPECT_TRUE(m.onTarget({0, 48}, 5.0));
@@ -69,7 +89,7 @@ TEST(UsvMission, TransitToStandoffThenArrive) {
 
 TEST(UsvMission, ManualAlwaysWins) {
   UsvMission m;
-  m.onPose({0, 0}, 0.0);
+  m.onPose({0, 0}, 0.0, 0.0);
   m.onTarget({50, 0}, 1.0);
   m.onManual(true, 2.0);
   EXPECT_EQ(m.phase(), UsvPhase::Manual);
@@ -81,7 +101,7 @@ TEST(UsvMission, ManualAlwaysWins) {
 
 TEST(UsvMission, SilentPeerHoldsPosition) {
   UsvMission m({10.0, 3.0, 1.0, 30.0});
-  m.onPose({1, 2}, 0.0);
+  m.onPose({1, 2}, 0.0, 0.0);
   m.tick(20.0);
   EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
   m.tick(31.0);
@@ -95,13 +115,13 @@ TEST(UsvMission, BadTargets) {
   UsvMission m;
   EXPECT_FALSE(m.onTarget({10, 10}, 0.0));  // no pose yet
   EXPECT_EQ(m.counters().get("target_before_pose"), 1u);
-  m.onPose({0, 0}, 0.0);
+  m.onPose({0, 0}, 0.0, 0.0);
   EXPECT_FALSE(m.onTarget({NAN, 10}, 1.0));
   EXPECT_EQ(m.counters().get("target_not_finite"), 1u);
   EXPECT_FALSE(m.onTarget({0, 2}, 2.0));  // at the vehicle: inside the stand-off, nothing to do
   EXPECT_EQ(m.phase(), UsvPhase::Arrived);
   EXPECT_TRUE(m.path().empty());
-  m.onPose({NAN, 0}, 3.0);
+  m.onPose({NAN, 0}, 0.0, 3.0);
   EXPECT_EQ(m.counters().get("pose_not_finite"), 1u);
 }
 
@@ -125,4 +145,83 @@ TEST(HoldPath, EndsAtThePointAlongTheHeading) {
   EXPECT_NEAR(h[0].y(), 18.0, 1e-12);
   EXPECT_EQ(h[1], Eigen::Vector2d(10, 20));
   EXPECT_TRUE(holdPath({NAN, 0}, 0.0).empty());
+}
+
+TEST(AuvMission, StartsAfterTheDelayAndSaysWhatGuidanceAndTheUsvMustBeTold) {
+  AuvMissionParams p = auvParams();
+  p.start_delay = 2.0;
+  AuvMission m(p);
+  m.tick(10.0);  // the first tick starts the clock
+  EXPECT_EQ(m.phase(), AuvPhase::Idle);
+  EXPECT_FALSE(m.takePath());
+  m.tick(12.0);
+  EXPECT_EQ(m.phase(), AuvPhase::Coverage);
+  auto path = m.takePath();
+  ASSERT_TRUE(path);
+  EXPECT_EQ(*path, coveragePath(p.coverage));
+  EXPECT_FALSE(m.takePath());  // once
+  // following, then station keeping before a detection: the coverage ended without a target
+  m.onGuidance(guidance::Mode::kStationKeeping, 13.0);  // not yet following: ignored
+  EXPECT_EQ(m.phase(), AuvPhase::Coverage);
+  m.onGuidance(guidance::Mode::kFollowPath, 14.0);
+  EXPECT_FALSE(m.onDetection({40, 3, 3}, 20.0));
+  EXPECT_TRUE(m.onDetection({40.2, 3, 3}, 30.0));
+  auto stop = m.takePath();
+  ASSERT_TRUE(stop);
+  EXPECT_TRUE(stop->empty());  // thrusters off
+  auto t = m.takeTarget();
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(t->x(), 40.1, 1e-9);
+  EXPECT_FALSE(m.takeTarget());
+  m.onGuidance(guidance::Mode::kStationKeeping, 40.0);
+  EXPECT_EQ(m.phase(), AuvPhase::TargetFound);
+}
+
+TEST(AuvMission, EndOfCoverageWithoutATargetStops) {
+  AuvMission m(auvParams());
+  m.start(0.0);
+  ASSERT_TRUE(m.takePath());
+  m.onGuidance(guidance::Mode::kFollowPath, 1.0);
+  m.onGuidance(guidance::Mode::kStationKeeping, 300.0);
+  EXPECT_EQ(m.phase(), AuvPhase::NoTarget);
+  auto stop = m.takePath();
+  ASSERT_TRUE(stop);
+  EXPECT_TRUE(stop->empty());
+}
+
+TEST(UsvMission, HoldsWhereItStartsThenFollowsTheTransitAndArrives) {
+  UsvMission m;
+  m.onPose({5, 7}, 0.5, 0.0);
+  auto hold = m.takePath();
+  ASSERT_TRUE(hold);
+  ASSERT_EQ(hold->size(), 2u);
+  EXPECT_NEAR((hold->back() - Eigen::Vector2d(5, 7)).norm(), 0.0, 1e-12);  // the hold path ends where it started
+  m.onPose({6, 7}, 0.5, 1.0);
+  EXPECT_FALSE(m.takePath());  // the start is fixed by the first pose
+  ASSERT_TRUE(m.onTarget({6, 47}, 2.0));
+  auto transit = m.takePath();
+  ASSERT_TRUE(transit);
+  EXPECT_EQ(*transit, m.path());
+  m.onGuidance(guidance::Mode::kStationKeeping, 40.0, 2.1);  // the old hold path's end, not the transit's
+  EXPECT_EQ(m.phase(), UsvPhase::Transit);
+  m.onGuidance(guidance::Mode::kFollowPath, 30.0, 3.0);
+  EXPECT_NEAR(m.distanceToGo(), 30.0, 1e-12);
+  m.onGuidance(guidance::Mode::kStationKeeping, 0.0, 90.0);
+  EXPECT_EQ(m.phase(), UsvPhase::Arrived);
+  EXPECT_TRUE(std::isnan(m.distanceToGo()));
+}
+
+TEST(UsvMission, ManualCommandsHoldAutonomyOffUntilTheyStop) {
+  UsvMissionParams p;
+  p.manual_timeout = 1.0;
+  UsvMission m(p);
+  m.onPose({0, 0}, 0.0, 0.0);
+  m.onManualCommand(5.0);
+  m.tick(5.5);
+  EXPECT_EQ(m.phase(), UsvPhase::Manual);
+  m.onManualCommand(5.9);
+  m.tick(6.5);
+  EXPECT_EQ(m.phase(), UsvPhase::Manual);
+  m.tick(7.0);  // 1.1 s after the last one
+  EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
 }

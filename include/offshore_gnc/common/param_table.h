@@ -1,0 +1,161 @@
+#pragma once
+// One table per parameters struct: every parameter's name, range, unit and one line of doc, in one place. The
+// default is the struct's own initial value (or a vehicle preset's), never repeated here. validate() checks a
+// struct against its table; the ROS reader (ros_util::readParams) and the YAML reader (readParamsYaml) fill a
+// struct through the same table, so a range or a name cannot differ between a nodelet, a YAML file loaded by a
+// ROS-free tool, and the dynamic_reconfigure .cfg (a test holds the .cfg ranges to the tables).
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+
+enum class ParamKind { kNumber, kInteger, kFlag, kNumbers, kChoice };
+
+template <class P>
+struct ParamSpec {
+  ParamKind kind = ParamKind::kNumber;
+  std::string name;  // relative name, '/' separates groups ("los/kp")
+  double lo = 0.0, hi = 0.0;
+  std::string unit, doc;
+  std::size_t size = 0;              // kNumbers: required length (0 = any)
+  std::vector<std::string> choices;  // kChoice
+  std::function<double&(P&)> number;
+  std::function<int&(P&)> integer;
+  std::function<bool&(P&)> flag;
+  std::function<std::vector<double>&(P&)> numbers;
+  std::function<std::string&(P&)> choice;
+};
+
+template <class P>
+class ParamTable {
+ public:
+  using Spec = ParamSpec<P>;
+
+  ParamTable& number(const std::string& name, double P::*m, double lo, double hi, const char* unit,
+                     const char* doc) {
+    return add(ParamKind::kNumber, name, lo, hi, unit, doc, [m](Spec& s) { s.number = [m](P& p) -> double& { return p.*m; }; });
+  }
+  // A field of a nested struct (e.g. PidGains::kp of UsvControlParams::yaw).
+  template <class S>
+  ParamTable& number(const std::string& name, S P::*outer, double S::*m, double lo, double hi, const char* unit,
+                     const char* doc) {
+    return add(ParamKind::kNumber, name, lo, hi, unit, doc,
+               [outer, m](Spec& s) { s.number = [outer, m](P& p) -> double& { return (p.*outer).*m; }; });
+  }
+  ParamTable& integer(const std::string& name, int P::*m, int lo, int hi, const char* doc) {
+    return add(ParamKind::kInteger, name, lo, hi, "", doc, [m](Spec& s) { s.integer = [m](P& p) -> int& { return p.*m; }; });
+  }
+  ParamTable& flag(const std::string& name, bool P::*m, const char* doc) {
+    return add(ParamKind::kFlag, name, 0, 1, "", doc, [m](Spec& s) { s.flag = [m](P& p) -> bool& { return p.*m; }; });
+  }
+  template <class S>
+  ParamTable& flag(const std::string& name, S P::*outer, bool S::*m, const char* doc) {
+    return add(ParamKind::kFlag, name, 0, 1, "", doc,
+               [outer, m](Spec& s) { s.flag = [outer, m](P& p) -> bool& { return (p.*outer).*m; }; });
+  }
+  template <class S>
+  ParamTable& integer(const std::string& name, S P::*outer, int S::*m, int lo, int hi, const char* doc) {
+    return add(ParamKind::kInteger, name, lo, hi, "", doc,
+               [outer, m](Spec& s) { s.integer = [outer, m](P& p) -> int& { return (p.*outer).*m; }; });
+  }
+  ParamTable& numbers(const std::string& name, std::vector<double> P::*m, std::size_t size, double lo, double hi,
+                      const char* unit, const char* doc) {
+    return add(ParamKind::kNumbers, name, lo, hi, unit, doc, [m, size](Spec& s) {
+      s.size = size;
+      s.numbers = [m](P& p) -> std::vector<double>& { return p.*m; };
+    });
+  }
+  template <class S>
+  ParamTable& numbers(const std::string& name, S P::*outer, std::vector<double> S::*m, std::size_t size, double lo,
+                      double hi, const char* unit, const char* doc) {
+    return add(ParamKind::kNumbers, name, lo, hi, unit, doc, [outer, m, size](Spec& s) {
+      s.size = size;
+      s.numbers = [outer, m](P& p) -> std::vector<double>& { return (p.*outer).*m; };
+    });
+  }
+  ParamTable& choice(const std::string& name, std::string P::*m, std::vector<std::string> choices, const char* doc) {
+    return add(ParamKind::kChoice, name, 0, 0, "", doc, [m, choices](Spec& s) {
+      s.choices = choices;
+      s.choice = [m](P& p) -> std::string& { return p.*m; };
+    });
+  }
+  // Another struct's table for a member of this one, under a prefix ("los/" + LosParams' names).
+  template <class S>
+  ParamTable& nest(const std::string& prefix, S P::*outer, const ParamTable<S>& inner) {
+    for (const auto& is : inner.specs()) {
+      Spec s;
+      s.kind = is.kind;
+      s.name = prefix + is.name;
+      s.lo = is.lo, s.hi = is.hi, s.unit = is.unit, s.doc = is.doc, s.size = is.size, s.choices = is.choices;
+      if (is.number) s.number = [outer, f = is.number](P& p) -> double& { return f(p.*outer); };
+      if (is.integer) s.integer = [outer, f = is.integer](P& p) -> int& { return f(p.*outer); };
+      if (is.flag) s.flag = [outer, f = is.flag](P& p) -> bool& { return f(p.*outer); };
+      if (is.numbers) s.numbers = [outer, f = is.numbers](P& p) -> std::vector<double>& { return f(p.*outer); };
+      if (is.choice) s.choice = [outer, f = is.choice](P& p) -> std::string& { return f(p.*outer); };
+      specs_.push_back(std::move(s));
+    }
+    return *this;
+  }
+
+  const std::vector<Spec>& specs() const { return specs_; }
+  const Spec* find(const std::string& name) const {
+    for (const auto& s : specs_)
+      if (s.name == name) return &s;
+    return nullptr;
+  }
+
+  // Throws ConfigError naming the first value outside its range ("parameter 'prefix+name' = v is out of ...").
+  void validate(const P& p, const std::string& prefix = "") const {
+    P q = p;  // the accessors give references: read a copy
+    for (const auto& s : specs_) {
+      const std::string n = prefix + s.name;
+      switch (s.kind) {
+        case ParamKind::kNumber: requireRange(n, s.number(q), s.lo, s.hi); break;
+        case ParamKind::kInteger: requireRange(n, s.integer(q), s.lo, s.hi); break;
+        case ParamKind::kFlag: break;
+        case ParamKind::kNumbers: {
+          const auto& v = s.numbers(q);
+          if (s.size && v.size() != s.size)
+            throw ConfigError("parameter '" + n + "' needs " + std::to_string(s.size) + " values, has " +
+                              std::to_string(v.size()));
+          for (std::size_t i = 0; i < v.size(); ++i) requireRange(n + "[" + std::to_string(i) + "]", v[i], s.lo, s.hi);
+          break;
+        }
+        case ParamKind::kChoice: {
+          const auto& v = s.choice(q);
+          bool ok = false;
+          for (const auto& c : s.choices) ok = ok || c == v;
+          if (!ok) {
+            std::string all;
+            for (const auto& c : s.choices) all += (all.empty() ? "" : ", ") + c;
+            throw ConfigError("parameter '" + n + "' = '" + v + "' is not one of: " + all);
+          }
+          break;
+        }
+      }
+    }
+  }
+
+ private:
+  template <class F>
+  ParamTable& add(ParamKind kind, const std::string& name, double lo, double hi, const char* unit, const char* doc,
+                  F&& bind) {
+    Spec s;
+    s.kind = kind;
+    s.name = name;
+    s.lo = lo;
+    s.hi = hi;
+    s.unit = unit;
+    s.doc = doc;
+    bind(s);
+    specs_.push_back(std::move(s));
+    return *this;
+  }
+  std::vector<Spec> specs_;
+};
+
+}  // namespace offshore_gnc

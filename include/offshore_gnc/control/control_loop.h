@@ -1,0 +1,69 @@
+#pragma once
+// The control of one vehicle as it runs on board: the guidance reference and the navigation state in (each with
+// the time it came), the actuator command out at the control rate. Stale or missing input, or a reference that
+// is not finite, gives the neutral command and says why; the vehicle's controller is one of the three of
+// vehicle_control.h. The Control nodelet and the ROS-free loops both run exactly this. ROS-free.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/control/vehicle_control.h"
+#include "offshore_gnc/models/reference.h"
+#include "offshore_gnc/models/state.h"
+
+namespace offshore_gnc {
+namespace control {
+
+struct ControlLoopParams {
+  std::string vehicle = "usv";  // usv | girona500 | acolor
+  double rate = 10.0;           // control steps per second [Hz]
+  double input_timeout = 1.0;   // older guidance reference or navigation -> neutral [s]
+  UsvControlParams usv;
+  Girona500ControlParams girona500;
+  AcolorControlParams acolor;
+  // vehicle, rate, input_timeout; the active vehicle's own table is read at the same level.
+  static const ParamTable<ControlLoopParams>& table();
+  void validate() const;
+};
+
+// The command for the vehicle's actuators: the USV's joystick, the Girona500's thruster set-points or the
+// aColor's RC channels (only the one of `vehicle` is set).
+struct ActuatorCommand {
+  JoystickOut joystick;
+  Girona500Out thrusters;
+  std::vector<std::uint16_t> rc;
+  bool active = false;  // false: the neutral command (why() says why)
+};
+
+class ControlLoop {
+ public:
+  explicit ControlLoop(const ControlLoopParams& p);
+  const ControlLoopParams& params() const { return p_; }
+  void setParams(const ControlLoopParams& p);  // the same vehicle; validates
+
+  void onReference(const MotionReference& r, double t);
+  void onState(const VehicleState& s, double t);
+  ActuatorCommand update(double t);
+
+  const std::string& why() const { return why_; }  // empty while controlling
+  const Counters& counters() const { return counters_; }            // stale_input, bad_reference
+  const Counters& controllerCounters() const;                        // nan_state, bad_reference
+
+ private:
+  ControlLoopParams p_;
+  std::unique_ptr<UsvController> usv_;
+  std::unique_ptr<Girona500Controller> g500_;
+  std::unique_ptr<AcolorController> acolor_;
+  MotionReference ref_;
+  VehicleState state_;
+  double ref_t_ = 0.0, state_t_ = 0.0;
+  bool have_ref_ = false, have_state_ = false;
+  std::string why_ = "waiting for guidance status and odometry";
+  Counters counters_;
+};
+
+}  // namespace control
+}  // namespace offshore_gnc

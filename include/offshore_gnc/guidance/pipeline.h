@@ -1,0 +1,84 @@
+#pragma once
+// The guidance of one vehicle as it runs on board: the mission's path, the LiDAR obstacles and the navigation
+// state in; the SBB planner (USV), the replanning policy and LOS guidance; the reference for control, the path
+// actually followed and the safety boxes out. The Guidance nodelet and the ROS-free loops both run exactly
+// this: they feed it plain structs and the time and publish what it returns. ROS-free; NED, seconds.
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/guidance/los.h"
+#include "offshore_gnc/guidance/sbb.h"
+#include "offshore_gnc/models/reference.h"
+#include "offshore_gnc/models/state.h"
+
+namespace offshore_gnc {
+namespace guidance {
+
+struct GuidanceParams {
+  std::string vehicle = "usv";   // usv | girona500 | acolor: selects the preset the other values start from
+  LosParams los;
+  SbbParams sbb;
+  bool sbb_enabled = true;       // plan around obstacles (the USV's LiDAR targets)
+  double obstacle_timeout = 5.0; // obstacles not refreshed for this long are dropped [s]
+  double replan_distance = 0.5;  // re-set the LOS path only when a planned waypoint moved more than this [m]
+  double odom_timeout = 1.0;     // older navigation -> hold the last good position [s]
+  double rate = 10.0;            // guidance steps per second [Hz]
+
+  // The vehicle's defaults (thesis Tables 4.1-4.3 and what the simulations showed; docs/parameters.md).
+  static GuidanceParams preset(const std::string& vehicle);
+  static const ParamTable<GuidanceParams>& table();
+  void validate() const;
+};
+
+struct GuidanceOutput {
+  LosOutput los;
+  MotionReference reference;     // what control follows (referenceOf(los))
+  bool planned_changed = false;  // plannedPath() differs from the last output's: publish it
+  bool boxes_changed = false;    // a replan happened: publish the boxes (also when empty)
+};
+
+class GuidancePipeline {
+ public:
+  explicit GuidancePipeline(const GuidanceParams& p);
+  void setParams(const GuidanceParams& p);  // validates; replans at the next update
+  const GuidanceParams& params() const { return p_; }
+
+  // The mission's path (NED). Empty: no path (idle). A new path chooses its detour sides afresh.
+  void setPath(const std::vector<Eigen::Vector3d>& path);
+  // A path that cannot be used (e.g. in a frame guidance does not work in): hold, and say why.
+  void rejectPath(const std::string& why);
+  // Obstacles seen at time t (NED). Non-finite geometry is dropped and counted.
+  void setObstacles(const std::vector<SbbObstacle>& obstacles, double t);
+  // Navigation state at time t.
+  void setState(const VehicleState& s, double t);
+
+  // One guidance step at time t, dt after the previous one. False before the first state (nothing to say).
+  bool update(double t, double dt, GuidanceOutput& out);
+
+  const std::vector<Eigen::Vector3d>& plannedPath() const { return planned_; }
+  const SbbPlan& plan() const { return plan_; }
+  const Counters& counters() const { return counters_; }            // stale_odom, bad_obstacles, ...
+  const Counters& losCounters() const { return los_.counters(); }   // nan_pose, bad_path, ...
+
+ private:
+  void replan(const VehicleState& s, double t);
+
+  GuidanceParams p_;
+  LosGuidance los_;
+  std::vector<Eigen::Vector3d> base_path_, planned_;
+  std::vector<bool> planned_detour_;
+  std::vector<SbbObstacle> obstacles_;
+  SbbPlan plan_;  // the last plan: its boxes' sides are kept while safe
+  VehicleState state_;
+  double state_time_ = 0.0, obstacles_time_ = -1e300;
+  bool have_state_ = false, new_path_ = false, replan_ = false, planned_changed_ = false, boxes_changed_ = false;
+  std::string reject_reason_;
+  Counters counters_;
+};
+
+}  // namespace guidance
+}  // namespace offshore_gnc

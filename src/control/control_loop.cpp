@@ -1,0 +1,83 @@
+#include "offshore_gnc/control/control_loop.h"
+
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace control {
+
+const ParamTable<ControlLoopParams>& ControlLoopParams::table() {
+  using P = ControlLoopParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .choice("vehicle", &P::vehicle, {"usv", "girona500", "acolor"}, "vehicle whose controller runs")
+      .number("rate", &P::rate, 0.1, 200.0, "Hz", "control steps per second")
+      .number("input_timeout", &P::input_timeout, 0.01, 60.0, "s",
+              "older guidance reference or navigation: neutral command");
+  return t;
+}
+
+void ControlLoopParams::validate() const {
+  table().validate(*this);
+  if (vehicle == "usv") usv.validate();
+  else if (vehicle == "girona500") girona500.validate();
+  else acolor.validate();
+}
+
+ControlLoop::ControlLoop(const ControlLoopParams& p) : p_(p) {
+  p_.usv.dt = p_.girona500.dt = p_.acolor.dt = 1.0 / p_.rate;
+  p_.validate();
+  if (p_.vehicle == "usv") usv_ = std::make_unique<UsvController>(p_.usv);
+  else if (p_.vehicle == "girona500") g500_ = std::make_unique<Girona500Controller>(p_.girona500);
+  else acolor_ = std::make_unique<AcolorController>(p_.acolor);
+}
+
+void ControlLoop::setParams(const ControlLoopParams& p) {
+  if (p.vehicle != p_.vehicle) throw ConfigError("parameter 'vehicle' cannot change at run time");
+  ControlLoopParams q = p;
+  q.usv.dt = q.girona500.dt = q.acolor.dt = 1.0 / q.rate;
+  q.validate();
+  if (usv_) usv_->setParams(q.usv);
+  if (g500_) g500_->setParams(q.girona500);
+  if (acolor_) acolor_->setParams(q.acolor);
+  p_ = q;
+}
+
+void ControlLoop::onReference(const MotionReference& r, double t) {
+  ref_ = r;
+  ref_t_ = t;
+  have_ref_ = true;
+}
+
+void ControlLoop::onState(const VehicleState& s, double t) {
+  state_ = s;
+  state_t_ = t;
+  have_state_ = true;
+}
+
+const Counters& ControlLoop::controllerCounters() const {
+  return usv_ ? usv_->counters() : g500_ ? g500_->counters() : acolor_->counters();
+}
+
+ActuatorCommand ControlLoop::update(double t) {
+  MotionReference r;  // idle = neutral
+  ActuatorCommand out;
+  if (!have_ref_ || !have_state_) {
+    why_ = "waiting for guidance status and odometry";
+  } else if (t - ref_t_ > p_.input_timeout || t - state_t_ > p_.input_timeout) {
+    counters_.increment("stale_input");
+    why_ = "guidance status or odometry stale";
+  } else if (!ref_.valid()) {
+    counters_.increment("bad_reference");
+    why_ = "bad guidance reference";
+  } else {
+    r = ref_;
+    why_.clear();
+    out.active = true;
+  }
+  if (usv_) out.joystick = usv_->update(state_, r);
+  else if (g500_) out.thrusters = g500_->update(state_, r);
+  else out.rc = acolor_->update(state_, r);
+  return out;
+}
+
+}  // namespace control
+}  // namespace offshore_gnc

@@ -1,0 +1,165 @@
+#include "offshore_gnc/guidance/pipeline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace guidance {
+
+GuidanceParams GuidanceParams::preset(const std::string& vehicle) {
+  GuidanceParams p;
+  p.vehicle = vehicle;
+  if (vehicle == "usv") {
+    // Table 4.1 LOS row; R = 2 L_USV (L_USV = 8 m, Table 3.3). The waterjet boat brakes at only ~0.05 m/s^2:
+    // slow down over the last 60 m; safety-box corners and the stand-off point are reached, not cut.
+    p.los.kp = 0.1;
+    p.los.ki = 0.001;
+    p.los.crab_gain = 0.004;
+    p.los.acceptance_radius = 16.0;
+    p.los.detour_radius = 2.0;
+    p.los.final_radius = 2.0;
+    p.los.approach_distance = 60.0;
+    p.los.approach_speed = 0.2;
+    p.los.surge_speed = 1.5;
+    p.sbb.safety_x = 10.0;
+    p.sbb.safety_y = 6.0;
+    p.sbb.corridor = 3.0;  // half beam 1.5 m + the tracking error at the corners
+    p.sbb.approach = 25.0;
+    p.sbb_enabled = true;
+  } else if (vehicle == "girona500") {
+    // Table 4.3 LOS row. The Girona500 turns on the spot: a 0.5 m sphere.
+    p.los.kp = 0.0333;
+    p.los.ki = 0.0;
+    p.los.sphere = true;
+    p.los.acceptance_radius = 0.5;
+    p.los.surge_speed = 0.3;
+    p.sbb_enabled = false;
+  } else if (vehicle == "acolor") {
+    // Table 4.2 LOS row; R = 3 L_AUV (Publication IV: its positions come from the USBL only), with L_AUV =
+    // 0.46 m for the BlueROV2 Heavy-class frame the model assumes (config/models/acolor.yaml).
+    p.los.kp = 0.333;
+    p.los.ki = 0.0;
+    p.los.sphere = true;
+    p.los.acceptance_radius = 1.4;
+    p.los.surge_speed = 0.3;
+    p.sbb_enabled = false;
+  } else {
+    throw ConfigError("parameter 'vehicle' = '" + vehicle + "' is not one of: usv, girona500, acolor");
+  }
+  return p;
+}
+
+const ParamTable<GuidanceParams>& GuidanceParams::table() {
+  using P = GuidanceParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .choice("vehicle", &P::vehicle, {"usv", "girona500", "acolor"}, "vehicle whose preset the other values start from")
+      .nest("los/", &P::los, LosParams::table())
+      .nest("sbb/", &P::sbb, SbbParams::table())
+      .flag("sbb/enabled", &P::sbb_enabled, "plan safety boxes around obstacles")
+      .number("sbb/obstacle_timeout", &P::obstacle_timeout, 0.1, 3600.0, "s",
+              "obstacles not refreshed for this long are dropped at the next replan")
+      .number("sbb/replan_distance", &P::replan_distance, 0.0, 100.0, "m",
+              "re-set the LOS path only when a planned waypoint moved more than this")
+      .number("odom_timeout", &P::odom_timeout, 0.01, 60.0, "s", "older navigation: hold the last good position")
+      .number("rate", &P::rate, 0.1, 100.0, "Hz", "guidance steps per second");
+  return t;
+}
+
+void GuidanceParams::validate() const { table().validate(*this); }
+
+GuidancePipeline::GuidancePipeline(const GuidanceParams& p) : p_(p), los_(p.los) { p_.validate(); }
+
+void GuidancePipeline::setParams(const GuidanceParams& p) {
+  p.validate();
+  los_.setParams(p.los);
+  p_ = p;
+  replan_ = true;
+}
+
+void GuidancePipeline::setPath(const std::vector<Eigen::Vector3d>& path) {
+  base_path_ = path;
+  reject_reason_.clear();
+  new_path_ = true;
+  plan_.boxes.clear();  // a new route chooses its detour sides afresh
+  replan_ = true;
+}
+
+void GuidancePipeline::rejectPath(const std::string& why) {
+  counters_.increment("rejected_paths");
+  base_path_.clear();
+  planned_.clear();
+  reject_reason_ = why;
+  los_.setPath({Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN())});  // -> hold fault
+}
+
+void GuidancePipeline::setObstacles(const std::vector<SbbObstacle>& obstacles, double t) {
+  obstacles_.clear();
+  for (const auto& o : obstacles) {
+    if (!o.origin.allFinite() || !std::isfinite(o.length) || !std::isfinite(o.width)) {
+      counters_.increment("bad_obstacles");
+      continue;
+    }
+    obstacles_.push_back(o);
+  }
+  obstacles_time_ = t;
+  replan_ = true;
+}
+
+void GuidancePipeline::setState(const VehicleState& s, double t) {
+  state_ = s;
+  state_time_ = t;
+  have_state_ = true;
+}
+
+void GuidancePipeline::replan(const VehicleState& s, double t) {
+  if (!p_.sbb_enabled || t - obstacles_time_ > p_.obstacle_timeout) obstacles_.clear();
+  SbbPlan plan;
+  if (obstacles_.empty() || base_path_.size() < 2) {
+    plan.path = base_path_;
+    plan.status = "path clear";
+  } else {
+    plan = planSbb(base_path_, s.position.head<2>(), obstacles_, p_.sbb, plan_.boxes);
+    if (plan.blocked) counters_.increment("blocked_plans");
+  }
+  // Re-set the LOS path only when it really changed (slowly moving obstacles), resuming on the nearest leg.
+  bool changed = new_path_ || plan.path.size() != planned_.size() || plan.detour != planned_detour_;
+  for (std::size_t i = 0; !changed && i < plan.path.size(); ++i)
+    changed = (plan.path[i] - planned_[i]).norm() > p_.replan_distance;
+  if (changed) {
+    planned_ = plan.path;
+    planned_detour_ = plan.detour;
+    if (!los_.setPath(planned_, !new_path_, planned_detour_)) counters_.increment("unusable_paths");
+    planned_changed_ = true;
+  }
+  new_path_ = false;
+  plan_ = plan;
+  boxes_changed_ = true;
+}
+
+bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
+  if (!have_state_) return false;  // nothing to report before the first pose
+  VehicleState s = state_;
+  const bool stale = t - state_time_ > p_.odom_timeout;
+  if (stale) {
+    counters_.increment("stale_odom");
+    s.position = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());  // LOS holds the last good
+  }
+  planned_changed_ = boxes_changed_ = false;
+  if (replan_ && s.position.allFinite()) {
+    replan(s, t);
+    replan_ = false;
+  }
+  out.los = los_.update(s, std::min(std::max(dt, 0.0), 1.0));
+  if (stale) out.los.status_text = "odometry stale: holding the last good position";
+  else if (!reject_reason_.empty() && out.los.mode == Mode::kHoldFault) out.los.status_text = reject_reason_;
+  out.reference = referenceOf(out.los);
+  out.planned_changed = planned_changed_;
+  out.boxes_changed = boxes_changed_;
+  return true;
+}
+
+}  // namespace guidance
+}  // namespace offshore_gnc
