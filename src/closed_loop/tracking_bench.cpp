@@ -10,7 +10,6 @@
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::closed_loop;
-using namespace offshore_gnc::control;
 
 namespace {
 void line(const char* name, const ClosedLoopResult& r) {
@@ -29,16 +28,19 @@ int main(int argc, char** argv) {
   const auto near = runUsv(scenarios::usvNearBuoy(true));
   const auto hold = runUsv(scenarios::usvHoldFromRest());
   const auto transit = runUsv(scenarios::usvShortTransit());
-  const auto auv = runGirona500(scenarios::auvCoverage(true));
-  Girona500ControlParams no_cross;
-  no_cross.cross_ki = 0.0;
-  const auto auv_nc = runGirona500(scenarios::auvCoverage(false), no_cross);
+  const auto auv = runAuv(scenarios::auvCoverage(true));
+  auto nc = scenarios::auvCoverage(false);
+  nc.auv = [](AuvStackConfig& a) {
+    a.guidance.los.adaptive_crab = false;
+    a.control.girona500.cross_ki = 0.0;
+  };
+  const auto auv_nc = runAuv(nc);
   auto truth_usv = scenarios::usvStraight(true);
   truth_usv.navigation = false;
   const auto usv_t = runUsv(truth_usv);
   auto truth_auv = scenarios::auvCoverage(true);
   truth_auv.navigation = false;
-  const auto auv_t = runGirona500(truth_auv);
+  const auto auv_t = runAuv(truth_auv);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   line("usv straight (crab)", usv);
   line("usv straight (no crab)", usv_nc);

@@ -15,8 +15,8 @@ const ParamTable<PidGains>& PidGains::table() {
       .number("kp", &P::kp, 0.0, 1e6, "", "proportional gain")
       .number("ki", &P::ki, 0.0, 1e6, "", "integral gain")
       .number("kd", &P::kd, 0.0, 1e6, "", "derivative gain (on the measured rate)")
-      .number("out_limit", &P::out_limit, 1e-6, 1e9, "", "|output| bound")
-      .number("i_limit", &P::i_limit, 0.0, 1e12, "", "|ki * integral| bound (anti-windup)");
+      .number("out_limit", &P::out_limit, 1e-6, 1e9, "", "bound on the output magnitude")
+      .number("i_limit", &P::i_limit, 0.0, 1e12, "", "bound on the magnitude of ki * integral (anti-windup)");
   return t;
 }
 

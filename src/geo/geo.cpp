@@ -9,6 +9,15 @@
 namespace offshore_gnc {
 namespace geo {
 
+const ParamTable<LatLonAlt>& LatLonAlt::table() {
+  using P = LatLonAlt;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("latitude", &P::lat_deg, -89.0, 89.0, "deg", "WGS84 latitude of the local frames' origin")
+      .number("longitude", &P::lon_deg, -180.0, 180.0, "deg", "WGS84 longitude of the origin")
+      .number("altitude", &P::alt_m, -1000.0, 10000.0, "m", "ellipsoidal height of the origin");
+  return t;
+}
+
 namespace {
 constexpr int kTm35Zone = 35;
 

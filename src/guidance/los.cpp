@@ -18,7 +18,7 @@ const ParamTable<LosParams>& LosParams::table() {
       .number("integral_limit", &P::integral_limit, 0.0, kPi / 2, "rad", "anti-windup: largest integral steering")
       .flag("adaptive_crab", &P::adaptive_crab, "estimate the crab (sideslip) angle (adaptive LOS)")
       .number("crab_gain", &P::crab_gain, 0.0, 1.0, "1/(m s)", "gain of the crab-angle estimate")
-      .number("crab_limit", &P::crab_limit, 0.0, kPi / 2, "rad", "largest |crab angle| estimate")
+      .number("crab_limit", &P::crab_limit, 0.0, kPi / 2, "rad", "largest magnitude of the crab-angle estimate")
       .number("acceptance_radius", &P::acceptance_radius, 0.01, 1000.0, "m",
               "circle (USV, 2 L_USV) or sphere (AUV) of acceptance")
       .flag("sphere", &P::sphere, "3-D sphere of acceptance (AUV) instead of the 2-D circle")

@@ -10,9 +10,20 @@
 namespace offshore_gnc {
 namespace navigation {
 
+const ParamTable<GpsNavigatorConfig>& GpsNavigatorConfig::table() {
+  using P = GpsNavigatorConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .list("antenna", 3, -50.0, 50.0, "m", "GPS antenna in the body frame (x forward, y starboard, z down)",
+            [](const P& p) { return std::vector<double>{p.antenna.x(), p.antenna.y(), p.antenna.z()}; },
+            [](P& p, const std::vector<double>& v) { p.antenna = {v[0], v[1], v[2]}; })
+      .number("heading_timeout", &P::heading_timeout, 1e-3, 60.0, "s", "a fix needs a heading at most this old")
+      .number("velocity_filter", &P::velocity_filter, 0.0, 60.0, "s",
+              "time constant of the filter on differenced velocity (receivers without Doppler)");
+  return t;
+}
+
 GpsNavigator::GpsNavigator(const geo::LatLonAlt& origin, const GpsNavigatorConfig& cfg) : frame_(origin), cfg_(cfg) {
-  requireRange("heading_timeout", cfg.heading_timeout, 1e-3, 60);
-  requireRange("velocity_filter", cfg.velocity_filter, 0, 60);
+  GpsNavigatorConfig::table().validate(cfg);
   for (int i = 0; i < 3; ++i) requireRange("antenna", cfg.antenna[i], -50, 50);
 }
 

@@ -48,14 +48,28 @@ constexpr std::uint32_t kMaxRings = 1024;
 
 }  // namespace
 
+const ParamTable<LidarConfig>& LidarConfig::table() {
+  using P = LidarConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("min_range", &P::min_range, 0.0, 1e4, "m", "closer returns are dropped (spray, the mount)")
+      .number("max_range", &P::max_range, 0.0, 1e4, "m", "farther returns are dropped")
+      .number("min_z", &P::min_z, -1e4, 1e4, "m", "lower returns (cloud frame) are water-surface returns")
+      .number("max_z", &P::max_z, -1e4, 1e4, "m", "higher returns are dropped")
+      .number("gap", &P::gap, 1e-3, 1e3, "m", "a jump between consecutive returns larger than this starts a target")
+      .number("layer_merge", &P::layer_merge, 0.0, 1e3, "m", "segments of different layers closer than this are one")
+      .integer("min_points", &P::min_points, 1, 1000000, "smaller clusters are dropped (spray, birds)")
+      .list("hull_box", 4, -1e3, 1e3, "m", "own hull [min_x, max_x, min_y, max_y] in the cloud frame; empty = off",
+            [](const P& p) { return std::vector<double>{p.hull_min_x, p.hull_max_x, p.hull_min_y, p.hull_max_y}; },
+            [](P& p, const std::vector<double>& v) {
+              p.hull_min_x = v[0], p.hull_max_x = v[1], p.hull_min_y = v[2], p.hull_max_y = v[3];
+            });
+  return t;
+}
+
 void LidarConfig::validate() const {
-  requireRange("min_range", min_range, 0.0, 1e4);
+  table().validate(*this);
   requireRange("max_range", max_range, min_range, 1e4);
   requireRange("max_z", max_z, min_z, 1e4);
-  requireRange("min_z", min_z, -1e4, max_z);
-  requireRange("gap", gap, 1e-3, 1e3);
-  requireRange("layer_merge", layer_merge, 0.0, 1e3);
-  requireRange("min_points", min_points, 1, 1e6);
 }
 
 const char* toString(CloudError e) {

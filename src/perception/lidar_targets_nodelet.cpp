@@ -13,6 +13,7 @@
 #include "offshore_gnc/TargetArray.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/ros/markers.h"
+#include "offshore_gnc/perception/sensor_frame.h"
 #include "ros_perception.h"
 
 namespace offshore_gnc {
@@ -24,17 +25,11 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
     ros_util::ParamReader p(pnh);
     perception::LidarConfig cfg;
     try {
-      cfg.min_range = p.number("min_range", 0.5, 0.0, 1e4);
-      cfg.max_range = p.number("max_range", 200.0, 0.0, 1e4);
-      cfg.min_z = p.number("min_z", -1.0, -1e4, 1e4);
-      cfg.max_z = p.number("max_z", 10.0, -1e4, 1e4);
-      cfg.gap = p.number("gap", 1.0, 1e-3, 1e3);
-      cfg.layer_merge = p.number("layer_merge", cfg.gap, 0.0, 1e3);
-      cfg.min_points = p.integer("min_points", 3, 1, 1000000);
-      const auto hull = p.numbers("hull_box", {0, 0, 0, 0}, 4, -1e3, 1e3);  // [min_x, max_x, min_y, max_y]
-      cfg.hull_min_x = hull[0]; cfg.hull_max_x = hull[1]; cfg.hull_min_y = hull[2]; cfg.hull_max_y = hull[3];
-      target_frame_ = p.text("target_frame", "map_ned");
-      tf_timeout_ = p.number("tf_timeout", 0.1, 0.0, 10.0);
+      ros_util::readParams(p, perception::LidarConfig::table(), cfg);
+      perception::SensorFrameParams f;
+      ros_util::readParams(p, perception::SensorFrameParams::table(), f);
+      target_frame_ = f.target_frame;
+      tf_timeout_ = f.tf_timeout;
       extractor_ = std::make_unique<perception::LidarTargetExtractor>(cfg);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/perception/sensor_frame.h"
 #include "offshore_gnc/ros/diagnostics.h"
 
 namespace offshore_gnc {
@@ -65,12 +66,7 @@ bool lookupPose(const tf2_ros::Buffer& tf, const std::string& target, const std:
 // Reads the sonar parameters shared with the wall detection (same names, same defaults).
 perception::SonarConfig readSonarConfig(const ros_util::ParamReader& p) {
   perception::SonarConfig c;
-  c.min_range = p.number("min_range", 1.5, 0.0, 1e3);
-  c.max_range = p.number("max_range", 0.0, 0.0, 1e3);
-  c.threshold = p.integer("threshold", 90, 0, 255);
-  c.max_beam_gap = deg2rad(p.number("max_beam_gap_deg", 6.0, 0.01, 180.0));
-  c.max_range_jump = p.number("max_range_jump", 1.0, 1e-3, 1e3);
-  c.min_beams = p.integer("min_beams", 2, 1, 10000);
+  ros_util::readParams(p, perception::SonarConfig::table(), c);
   return c;
 }
 
@@ -103,13 +99,14 @@ geometry_msgs::Point toPoint(const Eigen::Vector3d& v) {
   return p;
 }
 
-offshore_gnc::Target toTarget(const perception::TargetGeometry& g, const Eigen::Isometry3d& T, std::uint8_t source,
-                              double bearing_cw) {
+offshore_gnc::Target toTarget(const perception::TargetGeometry& sensor_frame, const Eigen::Isometry3d& T,
+                              std::uint8_t source, double bearing_cw) {
+  const perception::TargetGeometry g = perception::transformed(sensor_frame, T);
   offshore_gnc::Target t;
   t.source = source;
-  t.origin = toPoint(T * g.origin);
-  t.centroid = toPoint(T * g.centroid);
-  t.nearest = toPoint(T * g.nearest);
+  t.origin = toPoint(g.origin);
+  t.centroid = toPoint(g.centroid);
+  t.nearest = toPoint(g.nearest);
   t.length = g.length;
   t.width = g.width;
   t.height = g.height;
@@ -143,8 +140,10 @@ std::vector<visualization_msgs::Marker> targetMarkers(const std::vector<offshore
 
 void SonarFeed::readParams(const ros_util::ParamReader& p) {
   extractor = std::make_unique<perception::SonarTargetExtractor>(readSonarConfig(p));
-  target_frame = p.text("target_frame", "map_ned");
-  tf_timeout = p.number("tf_timeout", 0.1, 0.0, 10.0);
+  perception::SensorFrameParams f;
+  ros_util::readParams(p, perception::SensorFrameParams::table(), f);
+  target_frame = f.target_frame;
+  tf_timeout = f.tf_timeout;
 }
 
 void SonarFeed::connect(ros::NodeHandle& nh) {

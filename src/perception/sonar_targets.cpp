@@ -9,14 +9,21 @@
 namespace offshore_gnc {
 namespace perception {
 
-void SonarConfig::validate() const {
-  requireRange("min_range", min_range, 0.0, 1e3);
-  requireRange("max_range", max_range, 0.0, 1e3);
-  requireRange("threshold", threshold, 0, 255);
-  requireRange("max_beam_gap", max_beam_gap, 1e-4, kPi);
-  requireRange("max_range_jump", max_range_jump, 1e-3, 1e3);
-  requireRange("min_beams", min_beams, 1, 10000);
+const ParamTable<SonarConfig>& SonarConfig::table() {
+  using P = SonarConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("min_range", &P::min_range, 0.0, 1e3, "m", "Algorithm 1: bins closer than this are ignored")
+      .number("max_range", &P::max_range, 0.0, 1e3, "m", "bins farther are ignored (0 = every bin)")
+      .integer("threshold", &P::threshold, 0, 255, "intensity the strongest bin must reach")
+      .degrees("max_beam_gap_deg", &P::max_beam_gap, 0.01, 180.0,
+               "a larger bearing step between detections starts a new target")
+      .number("max_range_jump", &P::max_range_jump, 1e-3, 1e3, "m",
+              "a larger range step between consecutive beams starts a new target")
+      .integer("min_beams", &P::min_beams, 1, 10000, "targets seen in fewer beams are dropped (speckle)");
+  return t;
 }
+
+void SonarConfig::validate() const { table().validate(*this); }
 
 SonarTargetExtractor::SonarTargetExtractor(const SonarConfig& cfg) : cfg_(cfg) { cfg_.validate(); }
 

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "offshore_gnc/common/angles.h"
@@ -80,6 +81,21 @@ Eigen::Vector3d LidarScan::pointFrd(int layer, int beam) const {
   const double r = ranges[static_cast<std::size_t>(layer) * beams + beam];
   const double e = elevation[layer], a = azimuth[beam];
   return {r * std::cos(e) * std::cos(a), r * std::cos(e) * std::sin(a), -r * std::sin(e)};
+}
+
+void packCloud(const LidarScan& scan, PackedCloud& out) {
+  out.width = static_cast<std::uint32_t>(scan.beams);
+  out.height = static_cast<std::uint32_t>(scan.layers);
+  out.data.assign(static_cast<std::size_t>(out.width) * out.height * PackedCloud::kPointStep, 0);
+  std::uint8_t* d = out.data.data();
+  for (int l = 0; l < scan.layers; ++l)
+    for (int b = 0; b < scan.beams; ++b, d += PackedCloud::kPointStep) {
+      const Eigen::Vector3d p = scan.pointFrd(l, b);  // NaN propagates for no return
+      const float xyz[3] = {static_cast<float>(p.x()), static_cast<float>(-p.y()), static_cast<float>(-p.z())};
+      const std::uint16_t ring = static_cast<std::uint16_t>(l);
+      std::memcpy(d + PackedCloud::kX, xyz, sizeof xyz);
+      std::memcpy(d + PackedCloud::kRing, &ring, sizeof ring);
+    }
 }
 
 Lidar::Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed) : cfg_(cfg), world_(world), rng_(seed) {

@@ -9,7 +9,6 @@
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/NavSatFix.h>
 #include <sensor_msgs/PointCloud2.h>
-#include <sensor_msgs/point_cloud2_iterator.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include <algorithm>
@@ -171,29 +170,31 @@ class UsvSimNodelet : public nodelet::Nodelet {
     return s.t;
   }
 
-  // Organised cloud (height = layers, width = beams) in usv/lidar (FLU); NaN points for no return.
-  sensor_msgs::PointCloud2 cloudMessage(const sim::LidarScan& scan, const ros::Time& stamp) const {
+  // sim::packCloud's bytes (organised, usv/lidar FLU, NaN for no return) with their field description.
+  sensor_msgs::PointCloud2 cloudMessage(const sim::LidarScan& scan, const ros::Time& stamp) {
+    sim::packCloud(scan, packed_);
     sensor_msgs::PointCloud2 c;
     c.header.stamp = stamp;
     c.header.frame_id = "usv/lidar";
-    sensor_msgs::PointCloud2Modifier mod(c);
-    mod.setPointCloud2Fields(4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32,
-                             "z", 1, sensor_msgs::PointField::FLOAT32, "ring", 1, sensor_msgs::PointField::UINT16);
-    mod.resize(static_cast<std::size_t>(scan.layers) * scan.beams);
-    c.height = scan.layers;  // organised: one row per layer
-    c.width = scan.beams;
+    auto field = [](const char* name, std::uint32_t offset, std::uint8_t type) {
+      sensor_msgs::PointField f;
+      f.name = name;
+      f.offset = offset;
+      f.datatype = type;
+      f.count = 1;
+      return f;
+    };
+    using P = sim::PackedCloud;
+    c.fields = {field("x", P::kX, sensor_msgs::PointField::FLOAT32), field("y", P::kY, sensor_msgs::PointField::FLOAT32),
+                field("z", P::kZ, sensor_msgs::PointField::FLOAT32),
+                field("ring", P::kRing, sensor_msgs::PointField::UINT16)};
+    c.height = packed_.height;
+    c.width = packed_.width;
+    c.point_step = P::kPointStep;
     c.row_step = c.width * c.point_step;
+    c.is_bigendian = false;
     c.is_dense = false;
-    sensor_msgs::PointCloud2Iterator<float> x(c, "x"), y(c, "y"), z(c, "z");
-    sensor_msgs::PointCloud2Iterator<std::uint16_t> ring(c, "ring");
-    for (int l = 0; l < scan.layers; ++l)
-      for (int b = 0; b < scan.beams; ++b, ++x, ++y, ++z, ++ring) {
-        const Eigen::Vector3d p = scan.pointFrd(l, b);  // NaN propagates for no return
-        *x = static_cast<float>(p.x());
-        *y = static_cast<float>(-p.y());
-        *z = static_cast<float>(-p.z());
-        *ring = static_cast<std::uint16_t>(l);
-      }
+    c.data = packed_.data;
     return c;
   }
 
@@ -218,6 +219,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
   std::string base_frame_, command_topic_;
   double manual_timeout_ = 1.0, last_manual_ = -1e9;
   unsigned long truth_count_ = 0;
+  sim::PackedCloud packed_;
   ros::Publisher jet_pub_, truth_pub_, gps_pub_, heading_pub_, vel_pub_, lidar_pub_, map_pub_;
   ros::Subscriber auto_sub_, manual_sub_;
   tf2_ros::StaticTransformBroadcaster static_tf_;

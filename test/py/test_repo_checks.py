@@ -41,13 +41,90 @@ def test_the_check_itself_catches_ros_includes():
         assert not ROS_INCLUDE.search(line), line
 
 
-def test_core_library_links_no_ros():
-    libs = glob.glob(os.path.join(REPO, "build", ".ws*", "devel", "lib", "liboffshore_gnc_core.so"))
-    libs += [os.path.join(d, "liboffshore_gnc_core.so") for d in os.environ.get("LD_LIBRARY_PATH", "").split(":") if d]
-    libs = [l for l in libs if os.path.exists(l)]
-    assert libs, "liboffshore_gnc_core.so not built"
-    out = subprocess.run(["ldd", libs[0]], stdout=subprocess.PIPE, check=True).stdout.decode()
-    assert not re.search(r"lib(roscpp|rosconsole|rostime|nodeletlib|tf2_ros)", out), out
+def _built_libs():
+    """The module libraries of the workspace under test (the one on LD_LIBRARY_PATH, else any built one)."""
+    dirs = [d for d in os.environ.get("LD_LIBRARY_PATH", "").split(":") if d]
+    dirs += glob.glob(os.path.join(REPO, "build", ".ws*", "devel", "lib"))
+    for d in dirs:
+        libs = glob.glob(os.path.join(d, "liboffshore_gnc_*.so"))
+        if libs:
+            return libs
+    return []
+
+
+def test_core_libraries_link_no_ros():
+    core = [l for l in _built_libs() if not l.endswith("_ros.so")]
+    assert core, "no offshore_gnc core library built"
+    for lib in core:
+        out = subprocess.run(["ldd", lib], stdout=subprocess.PIPE, check=True).stdout.decode()
+        assert not re.search(r"lib(roscpp|rosconsole|rostime|nodeletlib|tf2_ros)", out), (lib, out)
+
+
+def _module_graph():
+    """{module: [dependencies]} from the module graph in CMakeLists.txt (the one place that states it)."""
+    text = open(os.path.join(REPO, "CMakeLists.txt"), encoding="utf-8").read()
+    graph = {}
+    for name, deps in re.findall(r"^offshore_gnc_module\((\w+)(?: DEPENDS ([\w ]+))?\)", text, re.M):
+        graph[name] = deps.split() if deps else []
+    return graph
+
+
+def _closure(graph, m):
+    seen, todo = set(), [m]
+    while todo:
+        for d in graph[todo.pop()]:
+            if d not in seen:
+                seen.add(d)
+                todo.append(d)
+    return seen
+
+
+def test_core_includes_follow_the_module_graph():
+    """A core file of module M includes only M's own headers and those of modules M depends on (layers point
+    down); ROS sides may also use the shared ROS helpers (`ros`)."""
+    graph = _module_graph()
+    assert {"common", "guidance", "control", "closed_loop"} <= set(graph), graph
+    inc = re.compile(r'#\s*include\s*"offshore_gnc/(\w+)/')
+    bad = []
+    for m in graph:
+        allowed = _closure(graph, m) | {m}
+        files = glob.glob(os.path.join(REPO, "include", "offshore_gnc", m, "*.h")) + glob.glob(os.path.join(REPO, "src", m, "*.*"))
+        for f in files:
+            ros_side = os.path.basename(f).startswith("ros_") or f.endswith(("_nodelet.cpp", "_main.cpp"))
+            for n, line in enumerate(open(f, encoding="utf-8"), 1):
+                hit = inc.search(line)
+                if hit and hit.group(1) not in allowed and not (ros_side and hit.group(1) == "ros"):
+                    bad.append("%s:%d includes %s (module %s may use %s)" % (
+                        os.path.relpath(f, REPO), n, hit.group(1), m, ", ".join(sorted(allowed))))
+    assert not bad, "includes that break the layering:\n" + "\n".join(bad)
+
+
+def test_control_and_guidance_do_not_reach_into_each_other():
+    for m, other in (("control", ("guidance", "sim")), ("guidance", ("control",))):
+        for f in glob.glob(os.path.join(REPO, "src", m, "*")) + glob.glob(os.path.join(REPO, "include", "offshore_gnc", m, "*")):
+            text = open(f, encoding="utf-8").read()
+            for o in other:
+                assert ("offshore_gnc/%s/" % o) not in text and ("../%s/" % o) not in text, (f, o)
+
+
+def test_unit_test_files_follow_the_pattern():
+    """test/unit/<module>/test_*.cpp is what CMake builds: a file named otherwise would silently not run."""
+    graph = _module_graph()
+    odd = []
+    for f in glob.glob(os.path.join(REPO, "test", "unit", "*", "*.cpp")):
+        mod = os.path.basename(os.path.dirname(f))
+        if not os.path.basename(f).startswith("test_") or mod not in graph:
+            odd.append(os.path.relpath(f, REPO))
+    assert not odd, "unit test files CMake does not build: %s" % odd
+
+
+def test_parameter_reference_is_generated_from_the_tables():
+    tool = [os.path.join(d, "offshore_gnc", "param_docs") for d in os.environ.get("LD_LIBRARY_PATH", "").split(":") if d]
+    tool = [t for t in tool if os.path.exists(t)]
+    assert tool, "param_docs not built"
+    out = subprocess.run([tool[0]], stdout=subprocess.PIPE, check=True).stdout.decode()
+    doc = open(os.path.join(REPO, "docs", "parameters.md"), encoding="utf-8").read()
+    assert doc == out, "docs/parameters.md is out of date: run `param_docs > docs/parameters.md`"
 
 
 def test_ci_runs_the_readme_test_command():

@@ -5,6 +5,7 @@
 // struct through the same table, so a range or a name cannot differ between a nodelet, a YAML file loaded by a
 // ROS-free tool, and the dynamic_reconfigure .cfg (a test holds the .cfg ranges to the tables).
 #include <cstddef>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -19,14 +20,16 @@ template <class P>
 struct ParamSpec {
   ParamKind kind = ParamKind::kNumber;
   std::string name;  // relative name, '/' separates groups ("los/kp")
-  double lo = 0.0, hi = 0.0;
+  double lo = 0.0, hi = 0.0;      // in the file's unit
+  double scale = 1.0;             // kNumber: struct value = file value * scale (degrees in files, radians inside)
   std::string unit, doc;
   std::size_t size = 0;              // kNumbers: required length (0 = any)
   std::vector<std::string> choices;  // kChoice
   std::function<double&(P&)> number;
   std::function<int&(P&)> integer;
   std::function<bool&(P&)> flag;
-  std::function<std::vector<double>&(P&)> numbers;
+  std::function<std::vector<double>(const P&)> get_numbers;  // kNumbers: lists are copied in and out, so a
+  std::function<void(P&, const std::vector<double>&)> set_numbers;  // list can be an Eigen vector or fields
   std::function<std::string&(P&)> choice;
 };
 
@@ -38,6 +41,13 @@ class ParamTable {
   ParamTable& number(const std::string& name, double P::*m, double lo, double hi, const char* unit,
                      const char* doc) {
     return add(ParamKind::kNumber, name, lo, hi, unit, doc, [m](Spec& s) { s.number = [m](P& p) -> double& { return p.*m; }; });
+  }
+  // An angle kept in radians, written in degrees in parameter files (name ends in _deg).
+  ParamTable& degrees(const std::string& name, double P::*m, double lo_deg, double hi_deg, const char* doc) {
+    return add(ParamKind::kNumber, name, lo_deg, hi_deg, "deg", doc, [m](Spec& s) {
+      s.scale = 3.14159265358979323846 / 180.0;
+      s.number = [m](P& p) -> double& { return p.*m; };
+    });
   }
   // A field of a nested struct (e.g. PidGains::kp of UsvControlParams::yaw).
   template <class S>
@@ -64,17 +74,17 @@ class ParamTable {
   }
   ParamTable& numbers(const std::string& name, std::vector<double> P::*m, std::size_t size, double lo, double hi,
                       const char* unit, const char* doc) {
-    return add(ParamKind::kNumbers, name, lo, hi, unit, doc, [m, size](Spec& s) {
-      s.size = size;
-      s.numbers = [m](P& p) -> std::vector<double>& { return p.*m; };
-    });
+    return list(name, size, lo, hi, unit, doc, [m](const P& p) { return p.*m; },
+                [m](P& p, const std::vector<double>& v) { p.*m = v; });
   }
-  template <class S>
-  ParamTable& numbers(const std::string& name, S P::*outer, std::vector<double> S::*m, std::size_t size, double lo,
-                      double hi, const char* unit, const char* doc) {
-    return add(ParamKind::kNumbers, name, lo, hi, unit, doc, [outer, m, size](Spec& s) {
+  // Any list-like value: `get` and `set` convert (an Eigen vector, a few fields written as one list).
+  ParamTable& list(const std::string& name, std::size_t size, double lo, double hi, const char* unit, const char* doc,
+                   std::function<std::vector<double>(const P&)> get,
+                   std::function<void(P&, const std::vector<double>&)> set) {
+    return add(ParamKind::kNumbers, name, lo, hi, unit, doc, [&](Spec& s) {
       s.size = size;
-      s.numbers = [outer, m](P& p) -> std::vector<double>& { return (p.*outer).*m; };
+      s.get_numbers = std::move(get);
+      s.set_numbers = std::move(set);
     });
   }
   ParamTable& choice(const std::string& name, std::string P::*m, std::vector<std::string> choices, const char* doc) {
@@ -90,11 +100,14 @@ class ParamTable {
       Spec s;
       s.kind = is.kind;
       s.name = prefix + is.name;
-      s.lo = is.lo, s.hi = is.hi, s.unit = is.unit, s.doc = is.doc, s.size = is.size, s.choices = is.choices;
+      s.lo = is.lo, s.hi = is.hi, s.scale = is.scale, s.unit = is.unit, s.doc = is.doc, s.size = is.size;
+      s.choices = is.choices;
       if (is.number) s.number = [outer, f = is.number](P& p) -> double& { return f(p.*outer); };
       if (is.integer) s.integer = [outer, f = is.integer](P& p) -> int& { return f(p.*outer); };
       if (is.flag) s.flag = [outer, f = is.flag](P& p) -> bool& { return f(p.*outer); };
-      if (is.numbers) s.numbers = [outer, f = is.numbers](P& p) -> std::vector<double>& { return f(p.*outer); };
+      if (is.get_numbers) s.get_numbers = [outer, f = is.get_numbers](const P& p) { return f(p.*outer); };
+      if (is.set_numbers)
+        s.set_numbers = [outer, f = is.set_numbers](P& p, const std::vector<double>& v) { f(p.*outer, v); };
       if (is.choice) s.choice = [outer, f = is.choice](P& p) -> std::string& { return f(p.*outer); };
       specs_.push_back(std::move(s));
     }
@@ -102,6 +115,28 @@ class ParamTable {
   }
 
   const std::vector<Spec>& specs() const { return specs_; }
+
+  // A value as a parameter file writes it (degrees for angles kept in radians).
+  static std::string text(const Spec& s, const P& p) {
+    P q = p;
+    auto num = [](double v) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%.6g", v);
+      return std::string(b);
+    };
+    switch (s.kind) {
+      case ParamKind::kNumber: return num(s.number(q) / s.scale);
+      case ParamKind::kInteger: return std::to_string(s.integer(q));
+      case ParamKind::kFlag: return s.flag(q) ? "true" : "false";
+      case ParamKind::kChoice: return s.choice(q);
+      case ParamKind::kNumbers: {
+        std::string o = "[";
+        for (double v : s.get_numbers(q)) o += (o.size() > 1 ? ", " : "") + num(v);
+        return o + "]";
+      }
+    }
+    return "";
+  }
   const Spec* find(const std::string& name) const {
     for (const auto& s : specs_)
       if (s.name == name) return &s;
@@ -114,11 +149,11 @@ class ParamTable {
     for (const auto& s : specs_) {
       const std::string n = prefix + s.name;
       switch (s.kind) {
-        case ParamKind::kNumber: requireRange(n, s.number(q), s.lo, s.hi); break;
+        case ParamKind::kNumber: requireRange(n, s.number(q) / s.scale, s.lo, s.hi); break;
         case ParamKind::kInteger: requireRange(n, s.integer(q), s.lo, s.hi); break;
         case ParamKind::kFlag: break;
         case ParamKind::kNumbers: {
-          const auto& v = s.numbers(q);
+          const auto v = s.get_numbers(q);
           if (s.size && v.size() != s.size)
             throw ConfigError("parameter '" + n + "' needs " + std::to_string(s.size) + " values, has " +
                               std::to_string(v.size()));

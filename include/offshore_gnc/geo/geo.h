@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <memory>
 
+#include "offshore_gnc/common/param_table.h"
+
 namespace GeographicLib {
 class LocalCartesian;
 }
@@ -14,6 +16,8 @@ struct LatLonAlt {
   double lat_deg = 0.0;
   double lon_deg = 0.0;
   double alt_m = 0.0;  // ellipsoidal height
+  // latitude, longitude, altitude: the names of an `origin` in vehicle configs and scenarios.
+  static const ParamTable<LatLonAlt>& table();
 };
 
 // Projected coordinates in ETRS-TM35FIN (EPSG:3067: transverse Mercator, UTM zone 35N on ETRS89;

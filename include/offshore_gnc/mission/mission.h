@@ -91,7 +91,7 @@ struct UsvMissionParams {
   double waypoint_spacing = 10.0;   // straight path to the target with a waypoint every 10 m (paper 3.2.3) [m]
   double standoff = 3.0;            // stop this far short of the target, then station keeping [m]
   double min_distance = 1.0;        // a target closer than this (after the stand-off) needs no transit [m]
-  double peer_timeout = 30.0;       // AUV side silent this long before a target arrived -> report, keep DP [s]
+  double peer_timeout = 60.0;       // AUV side silent this long before a target arrived -> report, keep DP [s]
   double manual_timeout = 1.0;      // manual control is released this long after its last command [s]
   static const ParamTable<UsvMissionParams>& table();
   void validate() const;

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/models/state.h"
 
@@ -15,6 +16,7 @@ struct GpsNavigatorConfig {
   Eigen::Vector3d antenna{0, 0, -2.5};  // antenna in body FRD [m], removed from the fix
   double heading_timeout = 1.0;         // a fix needs a heading at most this old [s]
   double velocity_filter = 0.5;         // first-order filter time constant on differenced velocity [s]
+  static const ParamTable<GpsNavigatorConfig>& table();
 };
 
 class GpsNavigator {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/perception/target_geometry.h"
 
 namespace offshore_gnc {
@@ -45,6 +46,7 @@ struct LidarConfig {
   // Own hull, axis-aligned box in the cloud frame; returns inside are dropped. Empty box (min >= max) = off.
   double hull_min_x = 0, hull_max_x = 0, hull_min_y = 0, hull_max_y = 0;
 
+  static const ParamTable<LidarConfig>& table();
   void validate() const;  // throws ConfigError naming the value
 };
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/perception/target_geometry.h"
 
 namespace offshore_gnc {
@@ -35,9 +36,10 @@ struct SonarConfig {
   double min_range = 1.5;         // [m] Algorithm 1: returns from the vehicle's own structure
   double max_range = 0.0;         // [m] 0 = all bins
   int threshold = 90;             // 0..255 intensity a detection must reach
-  double max_beam_gap = 0.1;      // [rad] larger bearing step between detections starts a new target
+  double max_beam_gap = 6.0 * 3.14159265358979323846 / 180.0;  // [rad] larger bearing step: a new target
   double max_range_jump = 1.0;    // [m] larger range step between consecutive beams starts a new target
   int min_beams = 2;              // targets with fewer beams are dropped (speckle)
+  static const ParamTable<SonarConfig>& table();
   void validate() const;
 };
 

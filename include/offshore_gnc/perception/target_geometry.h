@@ -1,7 +1,7 @@
 #pragma once
 // Geometry of one extracted target (LiDAR cluster or run of sonar beams), shared by both extractors so that
 // a target means the same thing whichever sensor saw it (thesis eq. 4.3, paper Algorithm 2).
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <cstddef>
@@ -26,6 +26,15 @@ struct TargetGeometry {
 // extremes around the centroid's direction, so a target across the +-pi or 0/2pi seam is handled. The
 // length/width axes are first -> last and its normal in the x-y plane. Empty input gives num_points = 0.
 TargetGeometry describeTarget(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& sensor);
+
+// The same target in another frame (`T`: points' frame -> that frame); extents and range are unchanged.
+inline TargetGeometry transformed(const TargetGeometry& g, const Eigen::Isometry3d& T) {
+  TargetGeometry o = g;
+  o.origin = T * g.origin;
+  o.centroid = T * g.centroid;
+  o.nearest = T * g.nearest;
+  return o;
+}
 
 // Monotonic stand-in for atan2(y, x) on (-pi, pi] mapped to (-2, 2]: no trigonometry in the inner loops.
 inline double pseudoAngle(double y, double x) {

@@ -44,12 +44,12 @@ void readParams(const ParamReader& r, const ParamTable<P>& t, P& p, const std::s
   for (const auto& s : t.specs()) {
     const std::string n = prefix + s.name;
     switch (s.kind) {
-      case ParamKind::kNumber: s.number(p) = r.number(n, s.number(p), s.lo, s.hi); break;
+      case ParamKind::kNumber: s.number(p) = s.scale * r.number(n, s.number(p) / s.scale, s.lo, s.hi); break;
       case ParamKind::kInteger:
         s.integer(p) = r.integer(n, s.integer(p), static_cast<int>(s.lo), static_cast<int>(s.hi));
         break;
       case ParamKind::kFlag: s.flag(p) = r.flag(n, s.flag(p)); break;
-      case ParamKind::kNumbers: s.numbers(p) = r.numbers(n, s.numbers(p), s.size, s.lo, s.hi); break;
+      case ParamKind::kNumbers: s.set_numbers(p, r.numbers(n, s.get_numbers(p), s.size, s.lo, s.hi)); break;
       case ParamKind::kChoice: s.choice(p) = r.choice(n, s.choice(p), s.choices); break;
     }
   }

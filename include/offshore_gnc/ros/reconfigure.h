@@ -5,7 +5,9 @@
 // to the tables).
 #include <dynamic_reconfigure/Config.h>
 
+#include <map>
 #include <string>
+#include <utility>
 
 #include "offshore_gnc/common/param_table.h"
 
@@ -26,6 +28,31 @@ const ParamSpec<P>* specForCfg(const ParamTable<P>& t, const std::string& cfg_na
   return nullptr;
 }
 
+// The range each parameter of a .cfg declares, by name (bools as 0..1).
+template <class Config>
+std::map<std::string, std::pair<double, double>> cfgRanges() {
+  dynamic_reconfigure::Config lo, hi;
+  Config::__getMin__().__toMessage__(lo);
+  Config::__getMax__().__toMessage__(hi);
+  std::map<std::string, std::pair<double, double>> r;
+  for (std::size_t i = 0; i < lo.doubles.size(); ++i) r[lo.doubles[i].name] = {lo.doubles[i].value, hi.doubles[i].value};
+  for (std::size_t i = 0; i < lo.ints.size(); ++i) r[lo.ints[i].name] = {lo.ints[i].value, hi.ints[i].value};
+  for (std::size_t i = 0; i < lo.bools.size(); ++i) r[lo.bools[i].name] = {0, 1};
+  return r;
+}
+
+// A .cfg range that differs from its table entry's, or "" when they agree; `found` is set when the table has it.
+template <class P>
+std::string cfgMismatch(const std::string& cfg_name, const std::pair<double, double>& range, const ParamTable<P>& t,
+                        bool& found) {
+  const ParamSpec<P>* s = specForCfg(t, cfg_name);
+  if (!s) return "";
+  found = true;
+  if (s->kind == ParamKind::kFlag || (range.first == s->lo && range.second == s->hi)) return "";
+  return cfg_name + ": .cfg range [" + std::to_string(range.first) + ", " + std::to_string(range.second) +
+         "], table [" + std::to_string(s->lo) + ", " + std::to_string(s->hi) + "]";
+}
+
 // The .cfg's Config with every parameter the table knows set from `p` (the others keep their .cfg defaults).
 template <class Config, class P>
 Config toReconfigure(const ParamTable<P>& t, const P& p) {
@@ -34,7 +61,7 @@ Config toReconfigure(const ParamTable<P>& t, const P& p) {
   c.__toMessage__(msg);
   P q = p;
   for (auto& d : msg.doubles)
-    if (auto s = specForCfg(t, d.name); s && s->number) d.value = s->number(q);
+    if (auto s = specForCfg(t, d.name); s && s->number) d.value = s->number(q) / s->scale;
   for (auto& b : msg.bools)
     if (auto s = specForCfg(t, b.name); s && s->flag) b.value = s->flag(q);
   for (auto& i : msg.ints)
@@ -49,7 +76,7 @@ P fromReconfigure(const Config& c, const ParamTable<P>& t, P p) {
   dynamic_reconfigure::Config msg;
   c.__toMessage__(msg);
   for (const auto& d : msg.doubles)
-    if (auto s = specForCfg(t, d.name); s && s->number) s->number(p) = d.value;
+    if (auto s = specForCfg(t, d.name); s && s->number) s->number(p) = d.value * s->scale;
   for (const auto& b : msg.bools)
     if (auto s = specForCfg(t, b.name); s && s->flag) s->flag(p) = b.value;
   for (const auto& i : msg.ints)

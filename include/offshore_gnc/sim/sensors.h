@@ -76,6 +76,16 @@ struct LidarScan {
   // Point of one return in the sensor frame, FRD (x forward, y starboard, z down).
   Eigen::Vector3d pointFrd(int layer, int beam) const;
 };
+// A frame as the driver publishes it (sensor_msgs/PointCloud2 layout): organised, one row per layer, in the
+// sensor's FLU frame (x forward, y left, z up); per point x, y, z (float32) and ring (uint16); NaN for no
+// return. The UsvSim nodelet publishes these bytes and the ROS-free loops read them, so both see one frame.
+struct PackedCloud {
+  static constexpr std::uint32_t kPointStep = 16, kX = 0, kY = 4, kZ = 8, kRing = 12;
+  std::uint32_t width = 0, height = 0;
+  std::vector<std::uint8_t> data;
+};
+void packCloud(const LidarScan& scan, PackedCloud& out);
+
 class Lidar {
  public:
   Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed);

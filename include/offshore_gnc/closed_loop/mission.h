@@ -1,0 +1,57 @@
+#pragma once
+// The co-operative mission (paper 3.2.3, thesis chapter 5) ROS-free in one process: both vehicles' stacks
+// (closed_loop/stacks.h) on one simulated clock, the AUV's confirmed target handed to the USV's mission as the
+// relay would, until the USV holds position at the target, the AUV ends its search without one, or the time
+// limit. The same scenario, configuration and seeds as ./scripts/mission, with the figures its report gives
+// (metrics over the same samples: guidance's cross-track error in path following).
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "offshore_gnc/closed_loop/stacks.h"
+#include "offshore_gnc/guidance/metrics.h"
+#include "offshore_gnc/sim/scenario.h"
+
+namespace offshore_gnc {
+namespace closed_loop {
+
+struct MissionConfig {
+  std::string scenario_file;
+  sim::Scenario scenario;
+  UsvStackConfig usv;
+  AuvStackConfig auv;
+  std::string expect = "target_reached";  // or no_target (the scenario's mission section)
+  double max_sim_time = 900.0;            // [s]
+  double relay_latency = 0.0;             // simulated seconds from the AUV's /target to the USV's [s]
+};
+// The scenario, its mission section and the vehicles' configuration files under config_dir.
+MissionConfig loadMission(const std::string& config_dir, const std::string& scenario_file,
+                          const std::string& auv_model = "girona500");
+
+struct VehicleRecord {
+  std::vector<Eigen::Vector4d> truth;                 // (t, north, east, down) at 20 Hz, as the bags record it
+  std::vector<Eigen::Vector2d> xte;                   // (t, e) of guidance's samples in path following
+  std::vector<Eigen::Vector3d> planned;               // the longest path guidance planned
+  std::vector<guidance::SbbBox> boxes;                // the last safety boxes
+  guidance::TrackingMetrics metrics;                  // over xte
+  std::string final_phase;
+};
+
+struct MissionResult {
+  bool success = false;
+  std::string reason;
+  VehicleRecord usv, auv;
+  std::optional<Eigen::Vector3d> target;  // what the AUV reported
+  double target_error_m = 0.0;            // horizontal, against the nearest true target (NaN without one)
+  double detection_time_s = 0.0;          // from the start of the coverage (NaN without a detection)
+  double min_clearance_m = 0.0;           // the USV's closest approach to an obstacle's surface (NaN without one)
+  double usv_final_distance_to_target_m = 0.0;
+  double sim_time_s = 0.0, wall_time_s = 0.0;
+};
+
+MissionResult runMission(const MissionConfig& cfg);
+
+}  // namespace closed_loop
+}  // namespace offshore_gnc

@@ -1,0 +1,146 @@
+#pragma once
+// One vehicle's whole stack as its launch file runs it in simulation (usv.launch / auv.launch, sim:=true), in
+// one process and without ROS: the simulator (plant + sensors), navigation, perception, the guidance pipeline,
+// the control loop and the mission, each the very class its nodelet runs, fed what the nodelet would be fed,
+// at the rate its timer or its sensor gives. The configuration comes from the same files the launch files load
+// (config/), read through the same parameter tables. Both vehicles on one clock make the ROS-free mission
+// (closed_loop/mission.h).
+#include <Eigen/Core>
+
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "offshore_gnc/control/control_loop.h"
+#include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/guidance/pipeline.h"
+#include "offshore_gnc/mission/mission.h"
+#include "offshore_gnc/navigation/gps_navigator.h"
+#include "offshore_gnc/navigation/pose_history.h"
+#include "offshore_gnc/perception/lidar_targets.h"
+#include "offshore_gnc/perception/sonar_targets.h"
+#include "offshore_gnc/sim/simulation.h"
+
+namespace offshore_gnc {
+namespace closed_loop {
+
+// Steps of the simulation between two runs of a component at `rate_hz` (at least one).
+int stepsPer(double rate_hz, double dt);
+
+// ------------------------------------------------------------------------------------------------- USV
+struct UsvStackConfig {
+  sim::UsvSimulation::Config sim;     // sim_usv.launch: seed 1, the simulator's defaults
+  geo::LatLonAlt origin;              // config/usv.yaml: the navigation's local frame
+  navigation::GpsNavigatorConfig navigation;  // config/usv.yaml
+  perception::LidarConfig lidar;      // config/perception/lidar_usv.yaml
+  double pose_timeout = 0.1;          // tf_timeout: a frame waits this long for the pose at its stamp [s]
+  guidance::GuidanceParams guidance;  // config/guidance/usv.yaml
+  control::ControlLoopParams control; // config/control/usv.yaml
+  mission::UsvMissionParams mission;  // config/mission/usv.yaml
+  double mission_period = 0.5;        // the mission nodelet's timer [s]
+  bool mission_enabled = true;        // false: guidance follows setRoute()'s path (benchmarks, tests)
+  bool use_truth = false;             // guidance and control on the true state (isolates the controller)
+};
+// Reads the files under `config_dir` (the package's config/) as usv.launch loads them; ConfigError names the
+// file and the key.
+UsvStackConfig loadUsvStack(const std::string& config_dir);
+
+class UsvStack {
+ public:
+  UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg);
+  // One simulator step, then every component whose sensor output or period has come.
+  void step();
+  void onTarget(const Eigen::Vector2d& ned, double t);  // /target, relayed from the AUV
+  void onPeerAlive(double t);                           // the relay's link is up
+  void setRoute(const std::vector<Eigen::Vector3d>& path) { guidance_.setPath(path); }  // without the mission
+
+  double time() const { return sim_.state().t; }
+  const VehicleState& truth() const { return sim_.state(); }
+  const std::optional<VehicleState>& estimate() const { return estimate_; }
+  const mission::UsvMission& mission() const { return mission_; }
+  const guidance::GuidancePipeline& guidance() const { return guidance_; }
+  // The guidance output of this step, if guidance ran in it.
+  const guidance::GuidanceOutput* guidanceStep() const { return guided_ ? &last_ : nullptr; }
+  const std::vector<guidance::SbbObstacle>& obstacles() const { return obstacles_; }
+  const sim::UsvSimulation& simulation() const { return sim_; }
+
+ private:
+  void perceive(double t);
+
+  UsvStackConfig cfg_;
+  sim::UsvSimulation sim_;
+  navigation::GpsNavigator nav_;
+  navigation::PoseHistory poses_;
+  perception::LidarTargetExtractor lidar_;
+  guidance::GuidancePipeline guidance_;
+  control::ControlLoop control_;
+  mission::UsvMission mission_;
+  std::deque<sim::LidarScan> scans_;  // frames waiting for the pose at their stamp
+  sim::PackedCloud cloud_;
+  std::vector<guidance::SbbObstacle> obstacles_;
+  std::optional<VehicleState> estimate_;
+  guidance::GuidanceOutput last_;
+  bool guided_ = false;
+  long step_ = 0;
+  int guidance_every_, control_every_, mission_every_;
+};
+
+// ------------------------------------------------------------------------------------------------- AUV
+struct AuvStackConfig {
+  std::string model = "girona500";    // girona500 | acolor (auv.launch vehicle_model)
+  sim::AuvSimulation::Config sim;     // sim_auv.launch: seed 2, the simulator's defaults, the model's params
+  geo::LatLonAlt origin;              // config/auv_<model>.yaml
+  perception::SonarConfig sonar;      // config/perception/sonar_auv.yaml
+  double pose_timeout = 0.1;          // tf_timeout
+  guidance::GuidanceParams guidance;  // config/guidance/<model>.yaml
+  control::ControlLoopParams control; // config/control/<model>.yaml
+  mission::AuvMissionParams mission;  // config/mission/auv.yaml, the coverage from the scenario when it has one
+  double mission_period = 0.5;
+  bool mission_enabled = true;
+  bool use_truth = false;
+};
+AuvStackConfig loadAuvStack(const std::string& config_dir, const std::string& model,
+                            const std::string& scenario_file = "");
+
+class AuvStack {
+ public:
+  AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg);
+  void step();
+  void setRoute(const std::vector<Eigen::Vector3d>& path) { guidance_.setPath(path); }  // without the mission
+  const sim::AuvSimulation& simulation() const { return sim_; }
+
+  double time() const { return sim_.state().t; }
+  const VehicleState& truth() const { return sim_.state(); }
+  const std::optional<VehicleState>& estimate() const { return estimate_; }
+  const mission::AuvMission& mission() const { return mission_; }
+  const guidance::GuidancePipeline& guidance() const { return guidance_; }
+  const guidance::GuidanceOutput* guidanceStep() const { return guided_ ? &last_ : nullptr; }
+  // The confirmed target for the USV, once (what the mission publishes on /target).
+  std::optional<Eigen::Vector3d> takeTarget() { auto t = target_; target_.reset(); return t; }
+  // Sonar targets of the sweeps so far (map_ned).
+  const std::vector<perception::SonarTarget>& sonarTargets() const { return sonar_targets_; }
+
+ private:
+  void perceive();
+
+  AuvStackConfig cfg_;
+  sim::AuvSimulation sim_;
+  navigation::PoseHistory poses_;
+  perception::SonarTargetExtractor sonar_;
+  guidance::GuidancePipeline guidance_;
+  control::ControlLoop control_;
+  mission::AuvMission mission_;
+  std::deque<sim::SonarBeamReading> beams_;
+  std::vector<perception::SonarTarget> sonar_targets_;
+  std::optional<VehicleState> estimate_;
+  std::optional<Eigen::Vector3d> target_;
+  guidance::GuidanceOutput last_;
+  bool guided_ = false;
+  long step_ = 0;
+  int guidance_every_, control_every_, mission_every_;
+};
+
+}  // namespace closed_loop
+}  // namespace offshore_gnc

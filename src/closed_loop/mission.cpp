@@ -1,0 +1,117 @@
+#include "offshore_gnc/closed_loop/mission.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "offshore_gnc/common/validate.h"
+
+namespace offshore_gnc {
+namespace closed_loop {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void record(VehicleRecord& r, const VehicleState& truth, long step, const guidance::GuidanceOutput* g,
+            const guidance::GuidancePipeline& pipeline) {
+  if (step % 5 == 0) r.truth.emplace_back(truth.t, truth.position.x(), truth.position.y(), truth.position.z());
+  if (!g) return;
+  if (g->los.mode == guidance::Mode::kFollowPath) r.xte.emplace_back(truth.t, g->los.cross_track_error);
+  if (g->planned_changed && pipeline.plannedPath().size() > r.planned.size()) r.planned = pipeline.plannedPath();
+  if (g->boxes_changed) r.boxes = pipeline.plan().boxes;
+}
+
+void finish(VehicleRecord& r, const std::string& phase) {
+  std::vector<double> e;
+  for (const auto& s : r.xte) e.push_back(s.y());
+  r.metrics = guidance::computeMetrics(e);
+  r.final_phase = phase;
+}
+}  // namespace
+
+MissionConfig loadMission(const std::string& config_dir, const std::string& scenario_file,
+                          const std::string& auv_model) {
+  MissionConfig c;
+  c.scenario_file = scenario_file;
+  c.scenario = sim::loadScenario(scenario_file);
+  c.usv = loadUsvStack(config_dir);
+  c.auv = loadAuvStack(config_dir, auv_model, scenario_file);
+  const YAML::Node m = YAML::LoadFile(scenario_file)["mission"];
+  if (m && m["expect"]) c.expect = m["expect"].as<std::string>();
+  if (m && m["max_sim_time"]) c.max_sim_time = m["max_sim_time"].as<double>();
+  if (c.expect != "target_reached" && c.expect != "no_target")
+    throw ConfigError("scenario '" + scenario_file + "': mission.expect '" + c.expect +
+                      "' is not one of: target_reached, no_target");
+  return c;
+}
+
+MissionResult runMission(const MissionConfig& cfg) {
+  const auto w0 = std::chrono::steady_clock::now();
+  MissionResult res;
+  UsvStack usv(cfg.scenario, cfg.usv);
+  AuvStack auv(cfg.scenario, cfg.auv);
+  std::optional<std::pair<double, Eigen::Vector3d>> in_flight;  // /target on its way through the relay
+  long step = 0;
+  double t = 0.0;
+  res.reason = "simulated time limit reached";
+  for (; t <= cfg.max_sim_time; ++step) {
+    usv.step();
+    auv.step();
+    t = usv.time();
+    usv.onPeerAlive(t);  // the relay's link is up for the whole run
+    if (auto tg = auv.takeTarget()) {
+      res.target = *tg;
+      in_flight = std::make_pair(t + cfg.relay_latency, *tg);
+    }
+    if (in_flight && t >= in_flight->first) {
+      usv.onTarget(in_flight->second.head<2>(), t);
+      in_flight.reset();
+    }
+    record(res.usv, usv.truth(), step, usv.guidanceStep(), usv.guidance());
+    record(res.auv, auv.truth(), step, auv.guidanceStep(), auv.guidance());
+    if (cfg.expect == "target_reached" && usv.mission().finished()) {
+      res.success = true;
+      res.reason = "USV holds position at the target: " + usv.mission().detail();
+      break;
+    }
+    if (auv.mission().phase() == mission::AuvPhase::NoTarget) {
+      res.success = cfg.expect == "no_target";
+      res.reason = "AUV finished its coverage without a detection";
+      break;
+    }
+  }
+  finish(res.usv, mission::toString(usv.mission().phase()));
+  finish(res.auv, mission::toString(auv.mission().phase()));
+  res.sim_time_s = t;
+
+  const auto& targets = cfg.scenario.world.targets;
+  res.target_error_m = res.usv_final_distance_to_target_m = kNaN;
+  if (res.target && !targets.empty()) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& tt : targets) best = std::min(best, (res.target->head<2>() - tt.position.head<2>()).norm());
+    res.target_error_m = best;
+  }
+  if (!targets.empty()) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& tt : targets) best = std::min(best, (usv.truth().position.head<2>() - tt.position.head<2>()).norm());
+    res.usv_final_distance_to_target_m = best;
+  }
+  res.detection_time_s = auv.mission().detectionTime();
+  res.min_clearance_m = kNaN;
+  // as the report: each obstacle as a circle (a vessel's of half its larger extent)
+  std::vector<std::pair<Eigen::Vector2d, double>> circles;
+  for (const auto& b : cfg.scenario.world.buoys) circles.emplace_back(b.centre, b.radius);
+  for (const auto& v : cfg.scenario.world.vessels) circles.emplace_back(v.centre, std::max(v.length, v.width) / 2.0);
+  for (const auto& [c, r] : circles)
+    for (const auto& p : res.usv.truth) {
+      const double d = std::hypot(p(1) - c.x(), p(2) - c.y()) - r;
+      if (!(d >= res.min_clearance_m)) res.min_clearance_m = d;
+    }
+  res.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  return res;
+}
+
+}  // namespace closed_loop
+}  // namespace offshore_gnc

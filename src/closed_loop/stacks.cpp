@@ -1,0 +1,306 @@
+#include "offshore_gnc/closed_loop/stacks.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/param_yaml.h"
+#include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/perception/sensor_frame.h"
+
+namespace offshore_gnc {
+namespace closed_loop {
+
+int stepsPer(double rate_hz, double dt) { return std::max(1, static_cast<int>(std::lround(1.0 / (rate_hz * dt)))); }
+
+namespace {
+
+YAML::Node loadYaml(const std::string& path) {
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("cannot read '" + path + "': " + e.what());
+  }
+}
+
+// Body FRD <- sensor: the static transforms the simulators publish from their sensor mounts.
+Eigen::Isometry3d lidarMount(const sim::LidarConfig& c) {  // the cloud is in the sensor's FLU frame
+  return Eigen::Translation3d(c.mount) * Eigen::AngleAxisd(c.mount_yaw, Eigen::Vector3d::UnitZ()) *
+         Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX());
+}
+Eigen::Isometry3d sonarMount(const sim::SonarConfig& c) {  // the head's frame is FRD (SonarBeam.msg)
+  return Eigen::Isometry3d(Eigen::Translation3d(c.mount));
+}
+
+perception::CloudView viewOf(const sim::PackedCloud& c) {
+  using P = sim::PackedCloud;
+  perception::CloudView v;
+  v.data = c.data.data();
+  v.size = c.data.size();
+  v.width = c.width;
+  v.height = c.height;
+  v.point_step = P::kPointStep;
+  v.row_step = c.width * P::kPointStep;
+  const auto f32 = static_cast<std::uint8_t>(perception::FieldType::Float32);
+  v.x = {true, P::kX, f32, 1};
+  v.y = {true, P::kY, f32, 1};
+  v.z = {true, P::kZ, f32, 1};
+  v.ring = {true, P::kRing, static_cast<std::uint8_t>(perception::FieldType::UInt16), 1};
+  return v;
+}
+
+perception::SonarBeamView viewOf(const sim::SonarBeamReading& b) {
+  perception::SonarBeamView v;
+  v.stamp = b.t;
+  v.bearing = b.bearing;
+  v.beam_width = b.beam_width;
+  v.range_resolution = b.range_resolution;
+  v.range_offset = b.range_offset;
+  v.status = b.head_status;
+  v.bins = b.intensities.data();
+  v.num_bins = b.intensities.size();
+  return v;
+}
+
+guidance::GuidanceParams readGuidance(const std::string& file) {
+  const YAML::Node y = loadYaml(file);
+  guidance::GuidanceParams g = guidance::GuidanceParams::preset(y["vehicle"] ? y["vehicle"].as<std::string>() : "usv");
+  readParamsYaml(y, guidance::GuidanceParams::table(), g, file);
+  return g;
+}
+
+control::ControlLoopParams readControl(const std::string& file) {
+  const YAML::Node y = loadYaml(file);
+  control::ControlLoopParams c;
+  readParamsYaml(y, control::ControlLoopParams::table(), c, file);
+  if (c.vehicle == "usv") readParamsYaml(y, control::UsvControlParams::table(), c.usv, file);
+  else if (c.vehicle == "girona500") readParamsYaml(y, control::Girona500ControlParams::table(), c.girona500, file);
+  else readParamsYaml(y, control::AcolorControlParams::table(), c.acolor, file);
+  return c;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------- USV
+UsvStackConfig loadUsvStack(const std::string& dir) {
+  UsvStackConfig c;
+  const std::string vehicle = dir + "/usv.yaml";
+  const YAML::Node v = loadYaml(vehicle);
+  readParamsYaml(v, geo::LatLonAlt::table(), c.origin, vehicle, "origin/");
+  readParamsYaml(v, navigation::GpsNavigatorConfig::table(), c.navigation, vehicle);
+  const std::string lidar = dir + "/perception/lidar_usv.yaml";
+  const YAML::Node l = loadYaml(lidar);
+  readParamsYaml(l, perception::LidarConfig::table(), c.lidar, lidar);
+  perception::SensorFrameParams f;
+  readParamsYaml(l, perception::SensorFrameParams::table(), f, lidar);
+  c.pose_timeout = f.tf_timeout;
+  c.guidance = readGuidance(dir + "/guidance/usv.yaml");
+  c.control = readControl(dir + "/control/usv.yaml");
+  const std::string mission = dir + "/mission/usv.yaml";
+  readParamsYaml(loadYaml(mission), mission::UsvMissionParams::table(), c.mission, mission);
+  c.sim.seed = 1;  // sim_usv.launch's default
+  return c;
+}
+
+UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
+    : cfg_(cfg),
+      sim_(scenario, cfg.sim),
+      nav_(cfg.origin, cfg.navigation),
+      lidar_(cfg.lidar),
+      guidance_(cfg.guidance),
+      control_(cfg.control),
+      mission_(cfg.mission),
+      guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
+      control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
+      mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {}
+
+void UsvStack::onTarget(const Eigen::Vector2d& ned, double t) {
+  mission_.onTarget(ned, t);
+  if (auto p = mission_.takePath()) {
+    std::vector<Eigen::Vector3d> path;
+    for (const auto& w : *p) path.emplace_back(w.x(), w.y(), 0.0);
+    guidance_.setPath(path);
+  }
+}
+
+void UsvStack::onPeerAlive(double t) { mission_.onPeerAlive(t); }
+
+void UsvStack::perceive(double t) {
+  // LidarTargets: each frame positioned with the navigation pose at its stamp (tf2's wait, then drop).
+  while (!scans_.empty()) {
+    const sim::LidarScan& scan = scans_.front();
+    Eigen::Isometry3d body;
+    if (!poses_.at(scan.t, body)) {
+      if (t - scan.t > cfg_.pose_timeout) scans_.pop_front();  // dropped, as the nodelet does
+      else break;
+      continue;
+    }
+    sim::packCloud(scan, cloud_);
+    const perception::LidarResult r = lidar_.extract(viewOf(cloud_));
+    const Eigen::Isometry3d to_world = body * lidarMount(cfg_.sim.lidar);
+    obstacles_.clear();
+    for (const auto& g : r.targets) {
+      const perception::TargetGeometry w = perception::transformed(g, to_world);
+      guidance::SbbObstacle o;
+      o.origin = w.origin.head<2>();
+      o.length = w.length;
+      o.width = w.width;
+      obstacles_.push_back(o);
+    }
+    if (r.error == perception::CloudError::None && cfg_.guidance.sbb_enabled) guidance_.setObstacles(obstacles_, t);
+    scans_.pop_front();
+  }
+}
+
+void UsvStack::step() {
+  const sim::UsvSimulation::Outputs& out = sim_.step();
+  const double t = sim_.state().t;
+  ++step_;
+  guided_ = false;
+  if (out.gps) {  // GpsNavigation: heading and velocity first, then the fix
+    nav_.heading(out.gps->t, out.gps->heading);
+    nav_.velocity(out.gps->t, out.gps->velocity_ned, out.gps->rate_of_turn);
+    if (auto e = nav_.fix(out.gps->t, out.gps->fix)) {
+      estimate_ = e;
+      const VehicleState& s = cfg_.use_truth ? sim_.state() : *e;
+      poses_.add(s);
+      guidance_.setState(s, t);
+      control_.onState(s, t);
+      if (cfg_.mission_enabled) mission_.onPose(s.position.head<2>(), s.yaw, s.t);
+    }
+  }
+  if (out.lidar) scans_.push_back(sim_.scan());
+  perceive(t);
+  if (cfg_.mission_enabled) {
+    if (step_ % mission_every_ == 0) mission_.tick(t);
+    if (auto p = mission_.takePath()) {
+      std::vector<Eigen::Vector3d> path;
+      for (const auto& w : *p) path.emplace_back(w.x(), w.y(), 0.0);
+      guidance_.setPath(path);
+    }
+  }
+  if (step_ % guidance_every_ == 0 && guidance_.update(t, guidance_every_ * cfg_.sim.dt, last_)) {
+    guided_ = true;
+    control_.onReference(last_.reference, t);
+    if (cfg_.mission_enabled) mission_.onGuidance(last_.los.mode, last_.los.distance_to_go, t);
+  }
+  if (step_ % control_every_ == 0) {
+    const control::ActuatorCommand c = control_.update(t);
+    sim_.setCommand(models::UsvCommand{c.joystick.surge, c.joystick.sway, c.joystick.yaw});
+  }
+}
+
+// ------------------------------------------------------------------------------------------------- AUV
+AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, const std::string& scenario_file) {
+  if (model != "girona500" && model != "acolor")
+    throw ConfigError("vehicle_model '" + model + "' is not one of: girona500, acolor");
+  AuvStackConfig c;
+  c.model = model;
+  const std::string vehicle = dir + "/auv_" + model + ".yaml";
+  readParamsYaml(loadYaml(vehicle), geo::LatLonAlt::table(), c.origin, vehicle, "origin/");
+  const std::string sonar = dir + "/perception/sonar_auv.yaml";
+  const YAML::Node s = loadYaml(sonar);
+  readParamsYaml(s, perception::SonarConfig::table(), c.sonar, sonar);
+  perception::SensorFrameParams f;
+  readParamsYaml(s, perception::SensorFrameParams::table(), f, sonar);
+  c.pose_timeout = f.tf_timeout;
+  c.guidance = readGuidance(dir + "/guidance/" + model + ".yaml");
+  c.control = readControl(dir + "/control/" + model + ".yaml");
+  const std::string mission = dir + "/mission/auv.yaml";
+  const YAML::Node m = loadYaml(mission);
+  c.mission.coverage = mission::CoverageArea();
+  readParamsYaml(m, mission::AuvMissionParams::table(), c.mission, mission);
+  // as auv.launch: the scenario's auv/coverage when it has one, else the mission config's
+  const YAML::Node sc = scenario_file.empty() ? YAML::Node() : loadYaml(scenario_file);
+  if (sc && yamlAt(sc, "auv/coverage").IsDefined())
+    readParamsYaml(sc, mission::CoverageArea::table(), c.mission.coverage, scenario_file, "auv/coverage/");
+  else
+    readParamsYaml(m, mission::CoverageArea::table(), c.mission.coverage, mission, "coverage/");
+  c.mission.validate();
+  c.sim.seed = 2;  // sim_auv.launch's default
+  c.sim.auv = model == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
+  return c;
+}
+
+AuvStack::AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg)
+    : cfg_(cfg),
+      sim_(scenario, cfg.sim),
+      sonar_(cfg.sonar),
+      guidance_(cfg.guidance),
+      control_(cfg.control),
+      mission_(cfg.mission),
+      guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
+      control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
+      mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {}
+
+void AuvStack::perceive() {
+  // SonarTargets: each beam positioned with the navigation pose at its stamp; a sweep's targets to the mission.
+  const double t = sim_.state().t;
+  while (!beams_.empty()) {
+    const sim::SonarBeamReading& b = beams_.front();
+    const perception::SonarBeamView view = viewOf(b);
+    Eigen::Isometry3d body;
+    if (!sonar_.check(view)) {
+      beams_.pop_front();
+      continue;
+    }
+    if (!poses_.at(b.t, body)) {
+      if (t - b.t <= cfg_.pose_timeout) break;
+      sonar_.counters().increment("no_transform");
+      sonar_.breakRun();
+      beams_.pop_front();
+      continue;
+    }
+    sonar_.addBeam(view, body * sonarMount(cfg_.sim.sonar));
+    beams_.pop_front();
+    if (!sonar_.sweepReady()) continue;
+    const perception::SonarSweep sweep = sonar_.takeSweep();
+    for (const auto& st : sweep.targets) {
+      sonar_targets_.push_back(st);
+      if (mission_.onDetection(st.geometry.origin, sweep.end_stamp)) break;
+    }
+  }
+}
+
+void AuvStack::step() {
+  const sim::AuvSimulation::Outputs& out = sim_.step();
+  const double t = sim_.state().t;
+  ++step_;
+  guided_ = false;
+  if (out.odom) {  // the INS estimate: /auv/odom and its TF
+    estimate_ = out.odom;
+    const VehicleState& s = cfg_.use_truth ? sim_.state() : *out.odom;
+    poses_.add(s);
+    guidance_.setState(s, t);
+    control_.onState(s, t);
+  }
+  if (out.sonar) beams_.push_back(sim_.beam());
+  perceive();
+  if (cfg_.mission_enabled) {
+    if (step_ % mission_every_ == 0) mission_.tick(t);
+    if (auto p = mission_.takePath()) guidance_.setPath(*p);
+    if (auto tg = mission_.takeTarget()) target_ = tg;
+  }
+  if (step_ % guidance_every_ == 0 && guidance_.update(t, guidance_every_ * cfg_.sim.dt, last_)) {
+    guided_ = true;
+    control_.onReference(last_.reference, t);
+    if (cfg_.mission_enabled) {
+      mission_.onGuidance(last_.los.mode, t);
+      if (auto p = mission_.takePath()) guidance_.setPath(*p);
+    }
+  }
+  if (step_ % control_every_ == 0) {
+    const control::ActuatorCommand c = control_.update(t);
+    if (cfg_.model == "girona500") {
+      const auto& sp = c.thrusters.alloc.setpoint;
+      sim_.setThrusters(std::vector<double>(sp.data(), sp.data() + sp.size()));
+    } else {
+      sim_.setRcChannels(c.rc);
+    }
+  }
+}
+
+}  // namespace closed_loop
+}  // namespace offshore_gnc

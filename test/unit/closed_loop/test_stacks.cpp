@@ -1,0 +1,66 @@
+// The ROS-free stacks read the vehicles' shipped configuration files through the parameter tables, and the
+// whole default mission runs ROS-free in one process (./scripts/bench mission compares it with the ROS run).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "offshore_gnc/closed_loop/mission.h"
+#include "offshore_gnc/common/validate.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::closed_loop;
+
+TEST(StackConfig, ShippedFilesLoadWithTheVehiclesPresets) {
+  const UsvStackConfig u = loadUsvStack("config");
+  EXPECT_DOUBLE_EQ(u.guidance.los.acceptance_radius, 16.0);
+  EXPECT_TRUE(u.guidance.sbb_enabled);
+  EXPECT_EQ(u.control.vehicle, "usv");
+  EXPECT_DOUBLE_EQ(u.lidar.max_range, 64.0);                  // config/perception/lidar_usv.yaml
+  EXPECT_DOUBLE_EQ(u.lidar.hull_min_x, -6.0);
+  for (const char* m : {"girona500", "acolor"}) {
+    const AuvStackConfig a = loadAuvStack("config", m, "config/scenarios/pyhajarvi.yaml");
+    EXPECT_EQ(a.guidance.vehicle, m);
+    EXPECT_EQ(a.control.vehicle, m);
+    EXPECT_TRUE(a.guidance.los.sphere);
+    EXPECT_DOUBLE_EQ(a.mission.coverage.north_max, 60.0);      // the scenario's auv/coverage
+  }
+  EXPECT_THROW(loadAuvStack("config", "nautilus"), ConfigError);
+}
+
+TEST(StackConfig, ABadValueNamesTheFileAndTheKey) {
+  const std::string dir = testing::TempDir() + "/stack_config";
+  ASSERT_EQ(std::system(("rm -rf " + dir + " && cp -r config " + dir).c_str()), 0);
+  std::ofstream(dir + "/guidance/usv.yaml") << "vehicle: usv\nlos: {kp: 50.0}\n";
+  try {
+    loadUsvStack(dir);
+    FAIL() << "an out-of-range LOS gain was accepted";
+  } catch (const ConfigError& e) {
+    const std::string w = e.what();
+    EXPECT_NE(w.find("guidance/usv.yaml"), std::string::npos) << w;
+    EXPECT_NE(w.find("los/kp"), std::string::npos) << w;
+  }
+  std::ofstream(dir + "/guidance/usv.yaml") << "vehicle: usv\nlos: {adaptive_crab: maybe}\n";
+  EXPECT_THROW(loadUsvStack(dir), ConfigError);
+}
+
+TEST(RosFreeMission, TheDefaultMissionSucceedsInOneProcess) {
+  const MissionConfig cfg = loadMission("config", "config/scenarios/pyhajarvi.yaml");
+  const MissionResult r = runMission(cfg);
+  EXPECT_TRUE(r.success) << r.reason;
+  EXPECT_EQ(r.auv.final_phase, "TARGET_FOUND");
+  EXPECT_EQ(r.usv.final_phase, "ARRIVED");
+  EXPECT_LT(r.target_error_m, 1.5);
+  EXPECT_GT(r.min_clearance_m, 5.0);
+  EXPECT_GT(r.usv.metrics.samples, 100u);
+  EXPECT_GT(r.auv.metrics.samples, 100u);
+  EXPECT_LT(r.usv_final_distance_to_target_m, 6.0);
+}
+
+TEST(RosFreeMission, NoTargetScenarioEndsWithoutOne) {
+  const MissionConfig cfg = loadMission("config", "config/scenarios/no_target.yaml");
+  const MissionResult r = runMission(cfg);
+  EXPECT_TRUE(r.success) << r.reason;  // the scenario expects no target
+  EXPECT_EQ(r.auv.final_phase, "NO_TARGET");
+  EXPECT_FALSE(r.target.has_value());
+}

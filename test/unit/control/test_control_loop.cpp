@@ -1,0 +1,83 @@
+// control::ControlLoop: the reference selection only the nodelet knew before (missing and stale input, a
+// reference that is not finite), and each vehicle's command.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "offshore_gnc/control/control_loop.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::control;
+
+namespace {
+MotionReference follow(double heading, double surge) {
+  MotionReference r;
+  r.mode = ReferenceMode::kFollow;
+  r.heading = heading;
+  r.surge = surge;
+  r.depth = 3.0;
+  return r;
+}
+ControlLoopParams vehicle(const std::string& v) {
+  ControlLoopParams p;
+  p.vehicle = v;
+  return p;
+}
+}  // namespace
+
+TEST(ControlLoop, NeutralUntilReferenceAndStateHaveCome) {
+  ControlLoop c(vehicle("usv"));
+  EXPECT_FALSE(c.update(0.0).active);
+  EXPECT_NE(c.why().find("waiting"), std::string::npos);
+  c.onReference(follow(0.5, 1.5), 0.0);
+  EXPECT_FALSE(c.update(0.1).active);
+  c.onState(VehicleState(), 0.1);
+  const ActuatorCommand cmd = c.update(0.2);
+  EXPECT_TRUE(cmd.active);
+  EXPECT_TRUE(c.why().empty());
+  EXPECT_GT(cmd.joystick.surge, 0.0);  // 1.5 m/s asked, at rest
+  EXPECT_GT(cmd.joystick.yaw, 0.0);    // to starboard
+}
+
+TEST(ControlLoop, StaleInputGivesTheNeutralCommandAndIsCounted) {
+  ControlLoop c(vehicle("usv"));
+  c.onReference(follow(0.5, 1.5), 0.0);
+  c.onState(VehicleState(), 0.0);
+  EXPECT_TRUE(c.update(0.5).active);
+  const ActuatorCommand late = c.update(1.5);  // input_timeout 1 s
+  EXPECT_FALSE(late.active);
+  EXPECT_EQ(late.joystick.surge, 0.0);
+  EXPECT_EQ(late.joystick.yaw, 0.0);
+  EXPECT_EQ(c.counters().get("stale_input"), 1u);
+  EXPECT_NE(c.why().find("stale"), std::string::npos);
+}
+
+TEST(ControlLoop, ANonFiniteReferenceIsRefused) {
+  ControlLoop c(vehicle("girona500"));
+  MotionReference r = follow(NAN, 0.3);
+  c.onReference(r, 0.0);
+  c.onState(VehicleState(), 0.0);
+  const ActuatorCommand cmd = c.update(0.1);
+  EXPECT_FALSE(cmd.active);
+  EXPECT_EQ(c.counters().get("bad_reference"), 1u);
+  EXPECT_TRUE(cmd.thrusters.alloc.setpoint.allFinite());
+  EXPECT_NEAR(cmd.thrusters.alloc.setpoint.norm(), 0.0, 1e-12);
+}
+
+TEST(ControlLoop, EachVehicleGetsItsOwnCommand) {
+  ControlLoop g(vehicle("girona500"));
+  g.onReference(follow(0.0, 0.3), 0.0);
+  g.onState(VehicleState(), 0.0);
+  EXPECT_EQ(g.update(0.1).thrusters.alloc.setpoint.size(), 5);
+  ControlLoop a(vehicle("acolor"));
+  a.onReference(follow(0.0, 0.3), 0.0);
+  a.onState(VehicleState(), 0.0);
+  const ActuatorCommand rc = a.update(0.1);
+  ASSERT_EQ(rc.rc.size(), 8u);
+  EXPECT_EQ(rc.rc[4], 1650);  // constant surge on channel 5 while following
+  EXPECT_GT(rc.rc[2], 1500);  // heave down towards 3 m
+  ControlLoopParams p = vehicle("acolor");
+  EXPECT_THROW(a.setParams(vehicle("usv")), ConfigError);  // the vehicle cannot change at run time
+  p.input_timeout = -1.0;
+  EXPECT_THROW(ControlLoop bad(p), ConfigError);
+}

@@ -1,0 +1,162 @@
+// guidance::GuidancePipeline: the policy that only the nodelet knew before (replanning, kept sides, stale
+// navigation, rejected paths, expired obstacles), fed plain structs and the time.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "offshore_gnc/guidance/paths.h"
+#include "offshore_gnc/guidance/pipeline.h"
+
+using namespace offshore_gnc;
+using namespace offshore_gnc::guidance;
+
+namespace {
+VehicleState at(double n, double e, double yaw = 0.0) {
+  VehicleState s;
+  s.position = {n, e, 0.0};
+  s.yaw = yaw;
+  return s;
+}
+SbbObstacle buoy(double n, double e) {
+  SbbObstacle o;
+  o.id = 7;
+  o.origin = {n, e};
+  o.length = o.width = 1.2;
+  return o;
+}
+std::vector<Eigen::Vector3d> route() { return straightLine({0, 0, 0}, {100, 0, 0}, 10.0); }
+// The detour side of the plan (the box cuts several 10 m legs: one box per leg, all on one side).
+SbbSide sideOf(const SbbPlan& plan) {
+  SbbSide side = SbbSide::kNone;
+  for (const auto& b : plan.boxes) {
+    if (!b.cuts_path) continue;
+    if (side != SbbSide::kNone && b.side != side) return SbbSide::kBlocked;  // sides disagree: a failure
+    side = b.side;
+  }
+  return side;
+}
+}  // namespace
+
+TEST(GuidancePipeline, NothingBeforeTheFirstPoseThenFollows) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  GuidanceOutput o;
+  EXPECT_FALSE(g.update(0.1, 0.1, o));
+  g.setPath(route());
+  g.setState(at(0, 2), 0.1);
+  ASSERT_TRUE(g.update(0.2, 0.1, o));
+  EXPECT_EQ(o.los.mode, Mode::kFollowPath);
+  EXPECT_TRUE(o.planned_changed);
+  EXPECT_EQ(o.reference.mode, ReferenceMode::kFollow);
+  EXPECT_NEAR(o.reference.point.y(), 0.0, 1e-9);  // the projection on the leg
+  ASSERT_TRUE(g.update(0.3, 0.1, o));
+  EXPECT_FALSE(o.planned_changed);
+}
+
+TEST(GuidancePipeline, ReplansWhileAnObstacleMovesAndResumesOnTheNearestLeg) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  GuidanceOutput o;
+  g.setPath(route());
+  g.setState(at(20, 0), 0.0);
+  g.setObstacles({buoy(50, 0.5)}, 0.0);
+  ASSERT_TRUE(g.update(0.1, 0.1, o));
+  ASSERT_TRUE(o.boxes_changed);
+  const SbbSide side = sideOf(g.plan());
+  ASSERT_TRUE(side == SbbSide::kPort || side == SbbSide::kStarboard);
+  int off = 0;  // detour corners in the path followed
+  for (const auto& w : g.plannedPath()) off += std::abs(w.y()) > 5.0;
+  EXPECT_GE(off, 2);
+  // the buoy drifts 3 m north: the plan follows it; LOS resumes on the leg nearest the boat, not at the start
+  g.setObstacles({buoy(53, 0.5)}, 1.0);
+  ASSERT_TRUE(g.update(1.1, 0.1, o));
+  EXPECT_TRUE(o.planned_changed);
+  EXPECT_EQ(sideOf(g.plan()), side);
+  EXPECT_GE(o.los.active_leg, 2u);
+  // 0.2 m is below the replan distance: the boxes are refreshed, the path followed is not re-set
+  g.setObstacles({buoy(53.2, 0.5)}, 2.0);
+  ASSERT_TRUE(g.update(2.1, 0.1, o));
+  EXPECT_TRUE(o.boxes_changed);
+  EXPECT_FALSE(o.planned_changed);
+}
+
+TEST(GuidancePipeline, KeepsTheChosenSideWhileTheBoatDriftsAcrossTheCentreLine) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  GuidanceOutput o;
+  g.setPath(route());
+  g.setState(at(10, 0.4), 0.0);  // a little east of the buoy's line: starboard is closer
+  g.setObstacles({buoy(50, 0.0)}, 0.0);
+  ASSERT_TRUE(g.update(0.1, 0.1, o));
+  const SbbSide side = sideOf(g.plan());
+  ASSERT_TRUE(side == SbbSide::kPort || side == SbbSide::kStarboard);
+  g.setState(at(12, -0.4), 1.0);  // the current sets it across the line
+  g.setObstacles({buoy(50, 0.0)}, 1.0);
+  ASSERT_TRUE(g.update(1.1, 0.1, o));
+  EXPECT_EQ(sideOf(g.plan()), side);
+  // a new route chooses afresh
+  g.setPath(straightLine({12, -0.4, 0}, {100, -0.4, 0}, 10.0));
+  ASSERT_TRUE(g.update(1.2, 0.1, o));
+  EXPECT_TRUE(o.planned_changed);
+}
+
+TEST(GuidancePipeline, StaleNavigationHoldsTheLastGoodPosition) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  GuidanceOutput o;
+  g.setPath(route());
+  g.setState(at(5, 1), 0.0);
+  ASSERT_TRUE(g.update(0.1, 0.1, o));
+  EXPECT_EQ(o.los.mode, Mode::kFollowPath);
+  ASSERT_TRUE(g.update(1.5, 0.1, o));  // 1.5 s without odometry (timeout 1 s)
+  EXPECT_EQ(o.los.mode, Mode::kHoldFault);
+  EXPECT_NE(o.los.status_text.find("stale"), std::string::npos);
+  EXPECT_EQ(o.reference.mode, ReferenceMode::kHold);
+  EXPECT_NEAR(o.reference.point.x(), 5.0, 1e-9);
+  EXPECT_NEAR(o.reference.point.y(), 1.0, 1e-9);
+  EXPECT_GE(g.counters().get("stale_odom"), 1u);
+  g.setState(at(5.5, 1), 1.6);  // navigation back: following again
+  ASSERT_TRUE(g.update(1.7, 0.1, o));
+  EXPECT_EQ(o.los.mode, Mode::kFollowPath);
+}
+
+TEST(GuidancePipeline, ObstaclesNotRefreshedExpireAtTheNextReplan) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  GuidanceOutput o;
+  g.setPath(route());
+  g.setState(at(10, 0), 0.0);
+  g.setObstacles({buoy(50, 0.5)}, 0.0);
+  ASSERT_TRUE(g.update(0.1, 0.1, o));
+  ASSERT_FALSE(g.plan().boxes.empty());
+  g.setPath(route());  // a replan 10 s later: the LiDAR has not seen the buoy since (timeout 5 s)
+  ASSERT_TRUE(g.update(10.0, 0.1, o));
+  EXPECT_TRUE(g.plan().boxes.empty());
+  EXPECT_EQ(g.plannedPath().size(), route().size());
+}
+
+TEST(GuidancePipeline, BadInputIsRefusedWithAReason) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  GuidanceOutput o;
+  g.setState(at(0, 0), 0.0);
+  SbbObstacle bad = buoy(30, 0);
+  bad.length = NAN;
+  g.setObstacles({bad}, 0.0);
+  EXPECT_EQ(g.counters().get("bad_obstacles"), 1u);
+  g.rejectPath("path rejected: frame 'odom', expected 'map_ned'");
+  ASSERT_TRUE(g.update(0.1, 0.1, o));
+  EXPECT_EQ(o.los.mode, Mode::kHoldFault);
+  EXPECT_NE(o.los.status_text.find("frame 'odom'"), std::string::npos);
+  EXPECT_EQ(o.reference.mode, ReferenceMode::kHold);
+  g.setPath({});  // the AUV's stop: no path, neutral
+  ASSERT_TRUE(g.update(0.2, 0.1, o));
+  EXPECT_EQ(o.los.mode, Mode::kIdle);
+  EXPECT_EQ(o.reference.mode, ReferenceMode::kIdle);
+  GuidanceParams p = GuidanceParams::preset("usv");
+  p.los.kp = -1.0;
+  EXPECT_THROW(g.setParams(p), ConfigError);
+  EXPECT_THROW(GuidanceParams::preset("submarine"), ConfigError);
+}
+
+TEST(GuidancePipeline, PresetsAreTheThesisTables) {
+  EXPECT_DOUBLE_EQ(GuidanceParams::preset("usv").los.acceptance_radius, 16.0);  // 2 L_USV
+  EXPECT_DOUBLE_EQ(GuidanceParams::preset("girona500").los.kp, 0.0333);         // Table 4.3
+  EXPECT_DOUBLE_EQ(GuidanceParams::preset("acolor").los.kp, 0.333);             // Table 4.2
+  EXPECT_TRUE(GuidanceParams::preset("acolor").los.sphere);
+  EXPECT_FALSE(GuidanceParams::preset("girona500").sbb_enabled);
+}
