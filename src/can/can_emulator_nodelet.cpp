@@ -105,7 +105,7 @@ class CanEmulatorNodelet : public nodelet::Nodelet {
 
   void spin() {
     std::lock_guard<std::mutex> l(mutex_);
-    const double t = can::CanGateway::now();
+    const double t = can::CanGateway::monotonic();
     bus_->poll(t);
     for (const auto& f : bus_->receive(t)) jets_->onFrame(f, t);
     if (t < next_) return;

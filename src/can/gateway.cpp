@@ -73,49 +73,52 @@ std::optional<CanFrame> GatewayPolicy::tick(double now) {
   return jet::encodeCommand(c, false, cfg_.addresses);
 }
 
-double CanGateway::now() {
+double CanGateway::monotonic() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 CanGateway::CanGateway(SocketCanOptions bus, GatewayConfig config, Counters& counters)
-    : counters_(counters), bus_(std::move(bus), counters), policy_(config, counters) {
-  bus_.open();  // failure is not fatal: poll() retries, diagnostics show the state
+    : CanGateway(std::make_unique<SocketCan>(std::move(bus), counters), config, counters, &CanGateway::monotonic) {}
+
+CanGateway::CanGateway(std::unique_ptr<BusInterface> bus, GatewayConfig config, Counters& counters, Clock clock)
+    : counters_(counters), bus_(std::move(bus)), now_(std::move(clock)), policy_(config, counters) {
+  bus_->open();  // failure is not fatal: poll() retries, diagnostics show the state
 }
 
 bool CanGateway::onAutonomy(double surge, double sway, double yaw) {
   std::lock_guard<std::mutex> lock(mutex_);
-  return policy_.onAutonomy(surge, sway, yaw, now());
+  return policy_.onAutonomy(surge, sway, yaw, now_());
 }
 
 Mode CanGateway::mode() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return policy_.mode(now());
+  return policy_.mode(now_());
 }
 
 BusState CanGateway::state() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return bus_.state();
+  return bus_->state();
 }
 
 void CanGateway::spinOnce(double max_wait_s, const GatewayOutputs& out) {
-  double t = now();
+  double t = now_();
   const double wait = std::max(0.0, std::min(max_wait_s, next_tick_ - t));
-  bus_.wait(wait);  // only this thread touches the socket fd
+  bus_->wait(wait);  // only this thread touches the socket fd
   std::lock_guard<std::mutex> lock(mutex_);
-  t = now();
-  bus_.poll(t);
-  for (const CanFrame& f : bus_.receive(t)) handle(f, t, out);
+  t = now_();
+  bus_->poll(t);
+  for (const CanFrame& f : bus_->receive(t)) handle(f, t, out);
   if (t >= next_tick_) {
     // Fixed rate without drift; after a stall, restart the schedule instead of bursting.
     next_tick_ = (next_tick_ > 0.0 && t - next_tick_ < policy_.config().period) ? next_tick_ + policy_.config().period
                                                                                  : t + policy_.config().period;
     if (auto f = policy_.tick(t)) {
       // A command that cannot leave now is stale by the next period: never queue it for a burst later.
-      if (bus_.state() == BusState::kBusOff || bus_.state() == BusState::kDown) counters_.increment("commands_not_sent");
-      else bus_.send(*f);
+      if (bus_->state() == BusState::kBusOff || bus_->state() == BusState::kDown) counters_.increment("commands_not_sent");
+      else bus_->send(*f);
     }
   }
-  bus_.flush();
+  bus_->flush();
 }
 
 void CanGateway::handle(const CanFrame& f, double t, const GatewayOutputs& out) {

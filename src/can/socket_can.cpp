@@ -228,7 +228,7 @@ void SocketCan::poll(double now) {
   }
 }
 
-bool SocketCan::wait(double timeout_s) const {
+bool SocketCan::wait(double timeout_s) {
   if (fd_ < 0) {
     ::usleep(static_cast<useconds_t>(timeout_s * 1e6));
     return false;

@@ -5,11 +5,11 @@
 #include "offshore_gnc/usbl/positioning.h"
 
 namespace offshore_gnc {
-namespace usbl {
+namespace usbl_ros {
 
 // mount/{x,y,z} [m] in the USV body frame (x forward, y starboard, z down); mount/{roll,pitch,yaw} [deg].
-inline Mounting readMounting(const ros_util::ParamReader& p) {
-  Mounting m;
+inline usbl::Mounting readMounting(const ros_util::ParamReader& p) {
+  usbl::Mounting m;
   m.offset = {p.number("mount/x", 0.0, -50, 50), p.number("mount/y", 0.0, -50, 50), p.number("mount/z", 0.5, -50, 50)};
   m.roll = deg2rad(p.number("mount/roll", 0.0, -180, 180));
   m.pitch = deg2rad(p.number("mount/pitch", 0.0, -90, 90));
@@ -17,5 +17,5 @@ inline Mounting readMounting(const ros_util::ParamReader& p) {
   return m;
 }
 
-}  // namespace usbl
+}  // namespace usbl_ros
 }  // namespace offshore_gnc

@@ -62,7 +62,7 @@ class UsblNodelet : public nodelet::Nodelet {
       o.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
       o.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
       o.alt_m = p.number("origin/altitude", 0.0, -1000, 10000);
-      positioner_ = std::make_unique<usbl::Positioner>(usbl::readMounting(p), lim);
+      positioner_ = std::make_unique<usbl::Positioner>(usbl_ros::readMounting(p), lim);
       port_ = std::make_unique<usbl::SerialPort>(port, baud, retry_);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

@@ -47,7 +47,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
       link_ = p.text("port", "/tmp/seatrac_sim");
       cfg.local_id = static_cast<std::uint8_t>(p.integer("local_beacon_id", 1, 1, 15));
       cfg.remote_id = static_cast<std::uint8_t>(p.integer("remote_beacon_id", 2, 1, 15));
-      cfg.mount = usbl::readMounting(p);
+      cfg.mount = usbl_ros::readMounting(p);
       cfg.sound_speed = p.number("sound_speed", 1500.0, 1300, 1700);
       cfg.range_sigma = p.number("range_sigma", 0.05, 0, 100);
       cfg.angle_sigma = deg2rad(p.number("angle_sigma_deg", 0.5, 0, 45));

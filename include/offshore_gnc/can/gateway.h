@@ -67,20 +67,24 @@ struct GatewayOutputs {
 
 class CanGateway {
  public:
+  using Clock = std::function<double()>;
   CanGateway(SocketCanOptions bus, GatewayConfig config, Counters& counters);
+  // On any bus and clock (tests: a scripted bus and a simulated clock).
+  CanGateway(std::unique_ptr<BusInterface> bus, GatewayConfig config, Counters& counters, Clock clock);
   // One iteration: waits up to max_wait_s for frames, handles them, sends the periodic command when due.
   void spinOnce(double max_wait_s, const GatewayOutputs& out);
   // Thread-safe: the ROS callbacks call these while another thread spins.
   bool onAutonomy(double surge, double sway, double yaw);
   Mode mode() const;
   BusState state() const;
-  static double now();  // monotonic seconds
+  static double monotonic();  // seconds
 
  private:
   void handle(const CanFrame& f, double t, const GatewayOutputs& out);
 
   Counters& counters_;
-  SocketCan bus_;
+  std::unique_ptr<BusInterface> bus_;
+  Clock now_;
   GatewayPolicy policy_;
   jet::CounterCheck counters_check_;
   double next_tick_ = 0.0;

@@ -30,6 +30,26 @@ class BusMonitor {
   BusState state_ = BusState::kErrorActive;
 };
 
+// The bus as the gateway and the emulators use it (ros_canopen's DriverInterface): SocketCan on a real or
+// virtual interface, or a scripted bus in the tests (test/support/scripted_bus.h). Times are the caller's clock.
+class BusInterface {
+ public:
+  virtual ~BusInterface() = default;
+  // Opens the bus; false (with lastError()) when it cannot; poll() retries.
+  virtual bool open() = 0;
+  // All pending data frames (error frames update state() and are not returned).
+  virtual std::vector<CanFrame> receive(double now, std::size_t max = 256) = 0;
+  // Queues a frame; flush() writes what the bus accepts.
+  virtual void send(const CanFrame& f) = 0;
+  virtual void flush() = 0;
+  // Reopen after the interface disappeared, restart after bus-off.
+  virtual void poll(double now) = 0;
+  // Waits up to timeout_s for readable data. Returns true when readable.
+  virtual bool wait(double timeout_s) = 0;
+  virtual BusState state() const = 0;
+  virtual std::string lastError() const = 0;
+};
+
 struct SocketCanOptions {
   std::string iface = "can0";
   struct Filter {
@@ -44,29 +64,29 @@ struct SocketCanOptions {
   bool receive_own = false;     // also receive frames this socket sent (tests)
 };
 
-class SocketCan {
+class SocketCan : public BusInterface {
  public:
   SocketCan(SocketCanOptions options, Counters& counters);
-  ~SocketCan();
+  ~SocketCan() override;
   SocketCan(const SocketCan&) = delete;
   SocketCan& operator=(const SocketCan&) = delete;
 
   // Opens and binds; false (with lastError()) when the interface or AF_CAN is missing; poll() retries.
-  bool open();
+  bool open() override;
   int fd() const { return fd_; }
   bool fdEnabled() const { return fd_enabled_; }
   // All pending data frames (error frames update state() and are not returned). `now`: monotonic seconds.
-  std::vector<CanFrame> receive(double now, std::size_t max = 256);
+  std::vector<CanFrame> receive(double now, std::size_t max = 256) override;
   // Queues a frame; flush() writes what the kernel accepts.
-  void send(const CanFrame& f);
-  void flush();
+  void send(const CanFrame& f) override;
+  void flush() override;
   // Reopen after the interface disappeared, restart after bus-off.
-  void poll(double now);
+  void poll(double now) override;
   // Waits up to timeout_s for readable data (or the fd to appear). Returns true when readable.
-  bool wait(double timeout_s) const;
+  bool wait(double timeout_s) override;
 
-  BusState state() const { return monitor_.state(); }
-  const std::string& lastError() const { return last_error_; }
+  BusState state() const override { return monitor_.state(); }
+  std::string lastError() const override { return last_error_; }
   const SocketCanOptions& options() const { return opt_; }
   std::size_t queued() const { return queue_.size(); }
 

@@ -66,12 +66,14 @@ TEST(GuidancePipeline, ReplansWhileAnObstacleMovesAndResumesOnTheNearestLeg) {
   for (const auto& w : g.plannedPath()) off += std::abs(w.y()) > 5.0;
   EXPECT_GE(off, 2);
   // the buoy drifts 3 m north: the plan follows it; LOS resumes on the leg nearest the boat, not at the start
+  g.setState(at(21, 0), 1.0);
   g.setObstacles({buoy(53, 0.5)}, 1.0);
   ASSERT_TRUE(g.update(1.1, 0.1, o));
   EXPECT_TRUE(o.planned_changed);
   EXPECT_EQ(sideOf(g.plan()), side);
   EXPECT_GE(o.los.active_leg, 2u);
   // 0.2 m is below the replan distance: the boxes are refreshed, the path followed is not re-set
+  g.setState(at(22, 0), 2.0);
   g.setObstacles({buoy(53.2, 0.5)}, 2.0);
   ASSERT_TRUE(g.update(2.1, 0.1, o));
   EXPECT_TRUE(o.boxes_changed);

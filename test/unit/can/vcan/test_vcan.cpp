@@ -39,7 +39,7 @@ class Listener {
     thread_ = std::thread([this] {
       while (!stop_) {
         bus_.wait(0.005);
-        const double t = CanGateway::now();
+        const double t = CanGateway::monotonic();
         for (const auto& f : bus_.receive(t)) {
           std::lock_guard<std::mutex> l(m_);
           frames_.push_back({t, f});
@@ -166,9 +166,9 @@ TEST(Vcan, CommandsAtTheSetRate) {
   RunningGateway g(cfg);
   Autonomy a(g.gw);
   sleepFor(0.3);
-  const double t0 = CanGateway::now();
+  const double t0 = CanGateway::monotonic();
   sleepFor(2.0);
-  const double t1 = CanGateway::now();
+  const double t1 = CanGateway::monotonic();
   auto cmds = bus.commands(t0);
   int in_window = 0;
   for (const auto& c : cmds)
@@ -200,14 +200,14 @@ TEST(Vcan, ManualSuppressesAutonomyWithinOnePeriodAndWatchdogSendsNeutral) {
   jet::Command m;
   m.source = kJoystick;
   m.surge = -0.2;
-  const double t_manual = CanGateway::now();
+  const double t_manual = CanGateway::monotonic();
   for (int i = 0; i < 10; ++i) {
     m.counter = static_cast<std::uint8_t>(i);
     bridge.send(jet::encodeCommand(m, true));
     bridge.flush();
     sleepFor(0.1);
   }
-  const double t_manual_end = CanGateway::now();
+  const double t_manual_end = CanGateway::monotonic();
   EXPECT_GE(manual_seen.load(), 9);
   auto during = bus.commands(t_manual + cfg.period + kSlack);
   int autonomy_during = 0;
@@ -222,7 +222,7 @@ TEST(Vcan, ManualSuppressesAutonomyWithinOnePeriodAndWatchdogSendsNeutral) {
   EXPECT_EQ(back.back().second.source, kAutonomy);
   // Autonomy stops: neutral within timeout + one period.
   a.stop();
-  const double t_stop = CanGateway::now();
+  const double t_stop = CanGateway::monotonic();
   sleepFor(cfg.watchdog_timeout + 0.3);
   double first_neutral = -1;
   for (const auto& c : bus.commands(t_stop))
@@ -258,7 +258,7 @@ TEST(Vcan, BusOffReportedAndRecovered) {
   EXPECT_EQ(g.gw.state(), BusState::kBusOff);
   EXPECT_EQ(g.counters.get("bus_off"), 1u);
   EXPECT_GE(g.counters.get("restart_requests"), 1u);  // libsocketcan asked; vcan refuses it
-  const double t_off = CanGateway::now();
+  const double t_off = CanGateway::monotonic();
   sleepFor(0.2);
   EXPECT_TRUE(bus.commands(t_off).empty()) << "nothing is sent while bus-off";
   e.id = CAN_ERR_RESTARTED;
@@ -267,7 +267,7 @@ TEST(Vcan, BusOffReportedAndRecovered) {
   sleepFor(0.3);
   EXPECT_EQ(g.gw.state(), BusState::kErrorActive);
   EXPECT_EQ(g.counters.get("restarted"), 1u);
-  EXPECT_FALSE(bus.commands(CanGateway::now() - 0.2).empty()) << "commands flow again";
+  EXPECT_FALSE(bus.commands(CanGateway::monotonic() - 0.2).empty()) << "commands flow again";
 }
 
 TEST(Vcan, BadInputCountedNeverFatal) {
@@ -346,10 +346,10 @@ TEST(Vcan, EmulatorAndGatewayEndToEnd) {
   ASSERT_TRUE(dev.open());
   WaterjetEmulator jets(WaterjetModel{}, {}, ec);
   GpsCompassEmulator gps;
-  const double t0 = CanGateway::now();
-  while (CanGateway::now() - t0 < 1.5) {
+  const double t0 = CanGateway::monotonic();
+  while (CanGateway::monotonic() - t0 < 1.5) {
     dev.wait(0.05);
-    const double t = CanGateway::now();
+    const double t = CanGateway::monotonic();
     for (const auto& f : dev.receive(t)) jets.onFrame(f, t);
     for (const auto& f : jets.step(t)) dev.send(f);
     GpsCompassSample s;
