@@ -23,11 +23,3 @@ def test_parameter_reference_is_generated_from_the_tables():
     out = subprocess.run([tool], stdout=subprocess.PIPE, check=True).stdout.decode()
     doc = open(os.path.join(REPO, "docs", "parameters.md"), encoding="utf-8").read()
     assert doc == out, "docs/parameters.md is out of date: run `param_docs > docs/parameters.md`"
-
-
-def test_ci_runs_the_readme_test_command():
-    readme = open(os.path.join(REPO, "README.md"), encoding="utf-8").read()
-    ci = open(os.path.join(REPO, ".ci", "run"), encoding="utf-8").read()
-    cmds = re.findall(r"\./scripts/test\b", readme)
-    assert cmds, "README names no test command"
-    assert "./scripts/test" in ci

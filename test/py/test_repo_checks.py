@@ -117,3 +117,11 @@ def test_unit_test_files_follow_the_pattern():
         if not os.path.basename(f).startswith("test_") or mod not in graph:
             odd.append(os.path.relpath(f, REPO))
     assert not odd, "unit test files CMake does not build: %s" % odd
+
+
+def test_ci_runs_the_readme_test_command():
+    readme = open(os.path.join(REPO, "README.md"), encoding="utf-8").read()
+    ci = open(os.path.join(REPO, ".ci", "run"), encoding="utf-8").read()
+    cmds = re.findall(r"\./scripts/test\b", readme)
+    assert cmds, "README names no test command"
+    assert "./scripts/test" in ci
