@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/perception/sensor_frame.h"
@@ -23,15 +22,6 @@ YAML::Node loadYaml(const std::string& path) {
   } catch (const YAML::Exception& e) {
     throw ConfigError("cannot read '" + path + "': " + e.what());
   }
-}
-
-// Body FRD <- sensor: the static transforms the simulators publish from their sensor mounts.
-Eigen::Isometry3d lidarMount(const sim::LidarConfig& c) {  // the cloud is in the sensor's FLU frame
-  return Eigen::Translation3d(c.mount) * Eigen::AngleAxisd(c.mount_yaw, Eigen::Vector3d::UnitZ()) *
-         Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX());
-}
-Eigen::Isometry3d sonarMount(const sim::SonarConfig& c) {  // the head's frame is FRD (SonarBeam.msg)
-  return Eigen::Isometry3d(Eigen::Translation3d(c.mount));
 }
 
 perception::CloudView viewOf(const sim::PackedCloud& c) {
@@ -139,7 +129,7 @@ void UsvStack::perceive(double t) {
     }
     sim::packCloud(scan, cloud_);
     const perception::LidarResult r = lidar_.extract(viewOf(cloud_));
-    const Eigen::Isometry3d to_world = body * lidarMount(cfg_.sim.lidar);
+    const Eigen::Isometry3d to_world = body * sim::sensorMount(cfg_.sim.lidar.mount, cfg_.sim.lidar.mount_yaw, false);
     obstacles_.clear();
     for (const auto& g : r.targets) {
       const perception::TargetGeometry w = perception::transformed(g, to_world);
@@ -253,7 +243,7 @@ void AuvStack::perceive() {
       beams_.pop_front();
       continue;
     }
-    sonar_.addBeam(view, body * sonarMount(cfg_.sim.sonar));
+    sonar_.addBeam(view, body * sim::sensorMount(cfg_.sim.sonar.mount, 0.0, true));
     beams_.pop_front();
     if (!sonar_.sweepReady()) continue;
     const perception::SonarSweep sweep = sonar_.takeSweep();

@@ -68,7 +68,7 @@ class AuvSimNodelet : public nodelet::Nodelet {
     sonar_pub_ = nh.advertise<SonarBeam>("/auv/sonar/beam", 50);
     setpoint_sub_ = nh.subscribe("/auv/thruster_setpoints", 10, &AuvSimNodelet::onSetpoints, this);
     rc_sub_ = nh.subscribe("/auv/rc_channels", 10, &AuvSimNodelet::onRc, this);
-    static_tf_.sendTransform(ros_util::mountTransform(base_frame_, "auv/sonar", cfg.sonar.mount, 0.0, true));
+    static_tf_.sendTransform(ros_util::mountTransform(base_frame_, "auv/sonar", sim::sensorMount(cfg.sonar.mount, 0.0, true)));
 
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("auv_simulator");

@@ -83,6 +83,12 @@ Eigen::Vector3d LidarScan::pointFrd(int layer, int beam) const {
   return {r * std::cos(e) * std::cos(a), r * std::cos(e) * std::sin(a), -r * std::sin(e)};
 }
 
+Eigen::Isometry3d sensorMount(const Eigen::Vector3d& mount_frd, double yaw_frd, bool frd_sensor) {
+  Eigen::Isometry3d t = Eigen::Translation3d(mount_frd) * Eigen::AngleAxisd(yaw_frd, Eigen::Vector3d::UnitZ());
+  if (!frd_sensor) t = t * Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX());  // FLU sensor axes
+  return t;
+}
+
 void packCloud(const LidarScan& scan, PackedCloud& out) {
   out.width = static_cast<std::uint32_t>(scan.beams);
   out.height = static_cast<std::uint32_t>(scan.layers);

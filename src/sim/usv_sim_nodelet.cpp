@@ -77,8 +77,8 @@ class UsvSimNodelet : public nodelet::Nodelet {
     manual_sub_ = nh.subscribe("/usv/manual_cmd", 10, &UsvSimNodelet::onManual, this);
     if (!scenario_.map.empty()) map_pub_.publish(gridMessage());
 
-    static_tf_.sendTransform({ros_util::mountTransform(base_frame_, "usv/lidar", cfg.lidar.mount, cfg.lidar.mount_yaw, false),
-                              ros_util::mountTransform(base_frame_, "usv/gps", cfg.gps.antenna, 0.0, false)});
+    static_tf_.sendTransform({ros_util::mountTransform(base_frame_, "usv/lidar", sim::sensorMount(cfg.lidar.mount, cfg.lidar.mount_yaw, false)),
+                              ros_util::mountTransform(base_frame_, "usv/gps", sim::sensorMount(cfg.gps.antenna, 0.0, false))});
 
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("usv_simulator");

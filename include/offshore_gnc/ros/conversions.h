@@ -8,6 +8,8 @@
 #include <tf2/LinearMath/Quaternion.h>
 #include <tf2/utils.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -78,24 +80,23 @@ inline geometry_msgs::TransformStamped toTransform(const nav_msgs::Odometry& o) 
   return t;
 }
 
-// Static sensor mount: body FLU -> sensor. `frd` selects a sensor frame that is itself x forward, y starboard,
-// z down (the sonar head, SonarBeam.msg), otherwise the sensor frame is FLU like the body.
+// A static sensor mount (body FRD <- sensor, sim::sensorMount) as the TF from the FLU base frame to the sensor.
 inline geometry_msgs::TransformStamped mountTransform(const std::string& base, const std::string& sensor,
-                                                      const Eigen::Vector3d& mount_frd, double yaw_frd, bool frd) {
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = ros::Time(0);
-  t.header.frame_id = base;
-  t.child_frame_id = sensor;
-  t.transform.translation.x = mount_frd.x();
-  t.transform.translation.y = -mount_frd.y();
-  t.transform.translation.z = -mount_frd.z();
-  tf2::Quaternion q;
-  q.setRPY(frd ? kPi : 0.0, 0.0, -yaw_frd);
-  t.transform.rotation.x = q.x();
-  t.transform.rotation.y = q.y();
-  t.transform.rotation.z = q.z();
-  t.transform.rotation.w = q.w();
-  return t;
+                                                      const Eigen::Isometry3d& body_frd_to_sensor) {
+  const Eigen::Isometry3d t = Eigen::Isometry3d(Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX())) * body_frd_to_sensor;
+  const Eigen::Quaterniond q(t.rotation());
+  geometry_msgs::TransformStamped m;
+  m.header.stamp = ros::Time(0);
+  m.header.frame_id = base;
+  m.child_frame_id = sensor;
+  m.transform.translation.x = t.translation().x();
+  m.transform.translation.y = t.translation().y();
+  m.transform.translation.z = t.translation().z();
+  m.transform.rotation.x = q.x();
+  m.transform.rotation.y = q.y();
+  m.transform.rotation.z = q.z();
+  m.transform.rotation.w = q.w();
+  return m;
 }
 
 // GuidanceStatus' reference fields, as the guidance pipeline computed them (a field copy, no decisions).

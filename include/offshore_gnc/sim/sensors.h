@@ -2,6 +2,7 @@
 // Sensor simulators: each produces what the real sensor's driver would emit, from the vehicle's true state
 // and the world. Deterministic for a given seed (one std::mt19937_64 per sensor). ROS-free, NED / body FRD.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -13,6 +14,11 @@
 
 namespace offshore_gnc {
 namespace sim {
+
+// Body (FRD) <- sensor transform of a sensor mounted at `mount_frd` with `yaw_frd` about the body's z axis; the
+// sensor's own frame is FRD (the sonar head, SonarBeam.msg) or FLU (the LiDAR's cloud). The simulators publish
+// it as the static TF and the ROS-free loops position their sensor data with it.
+Eigen::Isometry3d sensorMount(const Eigen::Vector3d& mount_frd, double yaw_frd, bool frd_sensor);
 
 // ---------------------------------------------------------------- GPS-compass (USV)
 // An SBAS GPS-compass (e.g. a Hemisphere Vector): its position error is mostly slow (ionosphere, multipath) with
