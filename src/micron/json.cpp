@@ -25,6 +25,7 @@ double unitsDeg(int u) { return rad2deg(unitsToRad(u)); }
 std::string toJson(const Message& m, const HeadGeometry& g, double sound_speed) {
   std::ostringstream o;
   o.precision(10);
+  o << std::boolalpha;
   o << "{\"type\":\"" << typeName(m.type()) << "\",\"type_id\":" << int(m.type()) << ",\"tx\":" << int(m.tx)
     << ",\"rx\":" << int(m.rx);
   if (auto a = std::get_if<Alive>(&m.body)) {
