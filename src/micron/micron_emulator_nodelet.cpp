@@ -5,16 +5,9 @@
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
-#include <poll.h>
-#include <pty.h>
 #include <ros/ros.h>
-#include <termios.h>
-#include <unistd.h>
 
 #include <atomic>
-#include <cerrno>
-#include <chrono>
-#include <cstring>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -22,6 +15,7 @@
 #include "offshore_gnc/micron/emulator.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/sim/scenario.h"
+#include "offshore_gnc/usbl/pseudo_terminal.h"
 #include "ros_micron.h"
 
 namespace offshore_gnc {
@@ -31,15 +25,9 @@ class MicronEmulatorNodelet : public nodelet::Nodelet {
   ~MicronEmulatorNodelet() override {
     running_ = false;
     if (io_.joinable()) io_.join();
-    if (master_ >= 0) ::close(master_);
-    if (slave_ >= 0) ::close(slave_);
-    if (!link_.empty()) ::unlink(link_.c_str());
   }
 
  private:
-  static double monotonic() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-  }
 
   void onInit() override {
     ros::NodeHandle& nh = getNodeHandle();
@@ -64,20 +52,11 @@ class MicronEmulatorNodelet : public nodelet::Nodelet {
       NODELET_FATAL("%s", e.what());
       throw;
     }
-    if (::openpty(&master_, &slave_, nullptr, nullptr, nullptr) != 0) {
-      NODELET_FATAL("openpty failed: %s", std::strerror(errno));
-      throw std::runtime_error("openpty failed");
-    }
-    termios t{};
-    tcgetattr(slave_, &t);
-    cfmakeraw(&t);  // binary protocol: nothing may be translated or echoed
-    tcsetattr(slave_, TCSANOW, &t);
-    char name[256] = {};
-    ttyname_r(slave_, name, sizeof name);
-    ::unlink(link_.c_str());
-    if (::symlink(name, link_.c_str()) != 0) {
-      NODELET_FATAL("cannot create %s -> %s: %s", link_.c_str(), name, std::strerror(errno));
-      throw std::runtime_error("symlink failed");
+    try {
+      pty_ = std::make_unique<usbl::PseudoTerminal>(link_);
+    } catch (const std::runtime_error& e) {
+      NODELET_FATAL("%s", e.what());
+      throw;
     }
     truth_sub_ = nh.subscribe("/auv/ground_truth/odom", 20, &MicronEmulatorNodelet::onTruth, this);
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
@@ -91,7 +70,8 @@ class MicronEmulatorNodelet : public nodelet::Nodelet {
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->update(); });
     running_ = true;
     io_ = std::thread([this] { ioLoop(); });
-    NODELET_INFO("Micron emulator on %s (%s), %zu targets in the world", link_.c_str(), name, world.targets.size());
+    NODELET_INFO("Micron emulator on %s (%s), %zu targets in the world", link_.c_str(), pty_->slaveName().c_str(),
+                 world.targets.size());
   }
 
   void onTruth(const nav_msgs::Odometry& o) {
@@ -101,30 +81,23 @@ class MicronEmulatorNodelet : public nodelet::Nodelet {
     emu_->setVehicle(s);
   }
 
-  void write(const std::string& s) {
-    if (!s.empty() && ::write(master_, s.data(), s.size()) != static_cast<ssize_t>(s.size()))
-      counters_.increment("write_errors");
-  }
-
   void ioLoop() {
     std::uint8_t buf[512];
     while (running_ && ros::ok()) {
-      pollfd pfd{master_, POLLIN, 0};
+      const std::size_t n = pty_->read(buf, sizeof buf, 2);
       std::string out;
-      const bool readable = ::poll(&pfd, 1, 2) > 0 && (pfd.revents & POLLIN);
-      const ssize_t n = readable ? ::read(master_, buf, sizeof buf) : 0;
       {
         std::lock_guard<std::mutex> lock(mutex_);
-        const double now = monotonic();
-        if (n > 0) out = emu_->receive(buf, static_cast<std::size_t>(n), now);
+        const double now = micron_ros::monotonic();
+        if (n > 0) out = emu_->receive(buf, n, now);
         out += emu_->poll(now);
       }
-      write(out);
+      if (!pty_->write(out)) counters_.increment("write_errors");
     }
   }
 
   std::string link_;
-  int master_ = -1, slave_ = -1;
+  std::unique_ptr<usbl::PseudoTerminal> pty_;
   std::mutex mutex_;
   std::unique_ptr<micron::HeadEmulator> emu_;
   Counters counters_;

@@ -1,7 +1,8 @@
 // MicronSonar: the Tritech Micron on its serial line -> /auv/sonar/beam (offshore_gnc/SonarBeam, frame
 // auv/sonar), the head's mounting as a static transform, diagnostics (state, head info, counters). Thin wrapper:
 // the protocol and its recovery are micron::Session, the line is usbl::SerialPort (reopens a vanished device).
-// The device must exist when the node starts: a missing port is a clear fatal error naming it.
+// The device must exist when the node starts (within `device_wait`): a missing port is a clear fatal error naming
+// it. Run it as its own process (`nodelet standalone`): the wait must not hold up a shared manager's loading.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
@@ -30,9 +31,7 @@ class MicronSonarNodelet : public nodelet::Nodelet {
   }
 
  private:
-  static double monotonic() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-  }
+  static double monotonic() { return micron_ros::monotonic(); }
 
   void onInit() override {
     ros::NodeHandle& nh = getNodeHandle();

@@ -5,6 +5,7 @@
 #include <nav_msgs/Odometry.h>
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -17,7 +18,12 @@
 namespace offshore_gnc {
 namespace micron_ros {
 
-constexpr double kAny = 1e9;  // ranges are checked by the core's validate(), not twice
+constexpr double kAny = 1e9;
+
+// Device time: both the head and its emulator run on the wall clock, also under simulated /clock.
+inline double monotonic() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}  // ranges are checked by the core's validate(), not twice
 
 inline micron::HeadGeometry readGeometry(const ros_util::ParamReader& p) {
   micron::HeadGeometry g;
