@@ -28,7 +28,6 @@ class MicronEmulatorNodelet : public nodelet::Nodelet {
   }
 
  private:
-
   void onInit() override {
     ros::NodeHandle& nh = getNodeHandle();
     ros_util::ParamReader p(getPrivateNodeHandle());
