@@ -160,9 +160,9 @@ def test_a_missing_link_fails_naming_it():
     with MasterSet(["auv"]) as ms:
         port = free_udp_port()
         silent = ms["auv"].run(["rosrun", "offshore_gnc", "ardusub_bridge.py", "_url:=udpin:127.0.0.1:%d" % port,
-                                "_startup_timeout:=2.0"], name="silent")
-        serial = ms["auv"].run(["rosrun", "offshore_gnc", "ardusub_bridge.py", "_url:=/dev/ttyNO_PIXHAWK"],
-                               name="serial")
+                                "_startup_timeout:=2.0", "__name:=silent_bridge"], name="silent")
+        serial = ms["auv"].run(["rosrun", "offshore_gnc", "ardusub_bridge.py", "_url:=/dev/ttyNO_PIXHAWK",
+                                "__name:=serial_bridge"], name="serial")
         assert silent.wait(30) != 0 and serial.wait(30) != 0
         log = open(ms["auv"].log_path("silent")).read()
         assert "no HEARTBEAT from the autopilot on 'udpin:127.0.0.1:%d'" % port in log, log
