@@ -5,16 +5,10 @@
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
-#include <pty.h>
-#include <poll.h>
 #include <ros/ros.h>
 #include <std_msgs/UInt8MultiArray.h>
-#include <termios.h>
-#include <unistd.h>
 
 #include <atomic>
-#include <cerrno>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -24,6 +18,7 @@
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/usbl/beacon_sim.h"
+#include "offshore_gnc/usbl/pseudo_terminal.h"
 #include "ros_usbl.h"
 
 namespace offshore_gnc {
@@ -33,9 +28,6 @@ class UsblSimNodelet : public nodelet::Nodelet {
   ~UsblSimNodelet() override {
     running_ = false;
     if (io_.joinable()) io_.join();
-    if (master_ >= 0) ::close(master_);
-    if (slave_ >= 0) ::close(slave_);
-    if (!link_.empty()) ::unlink(link_.c_str());
   }
 
  private:
@@ -62,20 +54,11 @@ class UsblSimNodelet : public nodelet::Nodelet {
       throw;
     }
     mount_ = cfg.mount;
-    if (::openpty(&master_, &slave_, nullptr, nullptr, nullptr) != 0) {
-      NODELET_FATAL("openpty failed: %s", std::strerror(errno));
-      throw std::runtime_error("openpty failed");
-    }
-    termios t{};
-    tcgetattr(slave_, &t);
-    cfmakeraw(&t);  // the protocol's CR LF must pass untranslated, and nothing may echo back
-    tcsetattr(slave_, TCSANOW, &t);
-    char name[256] = {};
-    ttyname_r(slave_, name, sizeof name);
-    ::unlink(link_.c_str());
-    if (::symlink(name, link_.c_str()) != 0) {
-      NODELET_FATAL("cannot create %s -> %s: %s", link_.c_str(), name, std::strerror(errno));
-      throw std::runtime_error("symlink failed");
+    try {
+      pty_ = std::make_unique<usbl::PseudoTerminal>(link_);
+    } catch (const std::runtime_error& e) {
+      NODELET_FATAL("%s", e.what());
+      throw;
     }
     usv_sub_ = nh.subscribe("/usv/ground_truth/odom", 20, &UsblSimNodelet::onUsv, this);
     auv_sub_ = nh.subscribe("/auv/ground_truth/odom", 20, &UsblSimNodelet::onAuv, this);
@@ -92,7 +75,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->update(); });
     running_ = true;
     io_ = std::thread([this] { ioLoop(); });
-    NODELET_INFO("SeaTrac simulator on %s (%s)", link_.c_str(), name);
+    NODELET_INFO("SeaTrac simulator on %s (%s)", link_.c_str(), pty_->slaveName().c_str());
   }
 
   static bool poseOf(const nav_msgs::Odometry& o, usbl::Pose& p) {
@@ -126,28 +109,24 @@ class UsblSimNodelet : public nodelet::Nodelet {
   }
 
   void write(const std::string& s) {
-    if (s.empty()) return;
-    if (::write(master_, s.data(), s.size()) != static_cast<ssize_t>(s.size())) counters_.increment("write_errors");
+    if (!pty_->write(s)) counters_.increment("write_errors");
   }
 
   void ioLoop() {
     std::uint8_t buf[256];
     std::vector<usbl::StreamDecoder::Event> events;
     while (running_ && ros::ok()) {
-      pollfd pfd{master_, POLLIN, 0};
-      if (::poll(&pfd, 1, 5) > 0 && (pfd.revents & POLLIN)) {
-        const ssize_t n = ::read(master_, buf, sizeof buf);
-        if (n > 0) {
-          events.clear();
-          decoder_.feed(buf, static_cast<std::size_t>(n), events);
-          for (const auto& e : events) {
-            if (!e.message) continue;
-            std::lock_guard<std::mutex> lock(mutex_);
-            // Without both poses the beacon is out of reach: the ping times out.
-            sim_->setCurrentRange(have_usv_ && have_auv_ ? usbl::transceiverRange(mount_, usv_, auv_)
-                                                         : std::numeric_limits<double>::infinity());
-            write(sim_->handle(*e.message, ros::Time::now().toSec()));
-          }
+      const std::size_t n = pty_->read(buf, sizeof buf, 5);
+      if (n > 0) {
+        events.clear();
+        decoder_.feed(buf, n, events);
+        for (const auto& e : events) {
+          if (!e.message) continue;
+          std::lock_guard<std::mutex> lock(mutex_);
+          // Without both poses the beacon is out of reach: the ping times out.
+          sim_->setCurrentRange(have_usv_ && have_auv_ ? usbl::transceiverRange(mount_, usv_, auv_)
+                                                       : std::numeric_limits<double>::infinity());
+          write(sim_->handle(*e.message, ros::Time::now().toSec()));
         }
       }
       std::lock_guard<std::mutex> lock(mutex_);
@@ -156,7 +135,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
   }
 
   std::string link_;
-  int master_ = -1, slave_ = -1;
+  std::unique_ptr<usbl::PseudoTerminal> pty_;
   usbl::Mounting mount_;
   std::mutex mutex_;
   std::unique_ptr<usbl::BeaconSimulator> sim_;
