@@ -7,7 +7,7 @@ offshore_gnc_tool(relay_bench SOURCES src/relay/relay_bench_main.cpp ROS)
 # what they use (roscpp, topic_tools, diagnostic_updater, OpenSSL, zlib): no plugin loading and none of the
 # stack's PCL/OpenCV/GDAL libraries at start-up (0.13 s of dynamic loading), so the relay is up quickly.
 add_executable(relay_node src/relay/relay_node_main.cpp src/relay/engine.cpp src/relay/policy.cpp
-               src/relay/wire.cpp src/ros/ros_params.cpp)
+               src/relay/wire.cpp src/relay/key.cpp src/ros/ros_params.cpp)
 target_include_directories(relay_node PRIVATE include)
 target_include_directories(relay_node SYSTEM PRIVATE ${catkin_INCLUDE_DIRS} ${EIGEN3_INCLUDE_DIR})
 target_link_libraries(relay_node ${roscpp_LIBRARIES} ${topic_tools_LIBRARIES} ${diagnostic_updater_LIBRARIES}
@@ -15,3 +15,5 @@ target_link_libraries(relay_node ${roscpp_LIBRARIES} ${topic_tools_LIBRARIES} ${
 target_link_options(relay_node PRIVATE -Wl,--as-needed)
 add_dependencies(relay_node ${PROJECT_NAME}_generate_messages_cpp)
 install(TARGETS relay_node RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+# the deployment-key tool (launch/relay.launch runs its --check on hardware)
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/relay-key DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/scripts)

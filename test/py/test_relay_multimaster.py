@@ -58,7 +58,7 @@ def start_relay(master, cfg, name="relay", nodelet=False):
 
 def cfg(name, peers, topics, listen_port=0, key=KEY, **extra):
     c = {"name": name, "listen_port": listen_port, "peers": peers, "topics": topics,
-         "heartbeat_period": 0.1, "link_timeout": 0.6, "backoff_max": 0.5}
+         "heartbeat_period": 0.1, "link_timeout": 0.6, "backoff_max": 0.5, "sim": True}
     if key:
         c["key"] = key
     else:
@@ -112,6 +112,7 @@ def test_shipped_configs_carry_the_thesis_topics_latched_target():
             with open(os.path.join(REPO, "config", "relay", vehicle + ".yaml")) as f:
                 c = yaml.safe_load(f)
             c["key_file"] = key_file
+            c["sim"] = True  # KEY is no deployment key
             if vehicle == "usv":
                 c["listen_port"] = port
             else:

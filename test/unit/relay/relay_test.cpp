@@ -200,6 +200,7 @@ class Pair {
     c.name = name;
     c.auth = !key.empty();
     c.key = key;
+    c.sim = true;  // the test keys are not deployment keys
     c.heartbeat_period = 0.05;
     c.link_timeout = 0.5;
     c.backoff_min = 0.02;
