@@ -4,6 +4,7 @@
 #   suite_env DIR              REPO, out (= $TEST_RESULTS_DIR), ws (= $WS or build/.ws), work (= $ws/DIR)
 #   junit_case CLASS NAME [pass|fail|skip] [MESSAGE] [SECONDS] [OUTPUT]
 #   junit_fuzz CLASS NAME RC LIBFUZZER_LOG SECONDS     pass when libFuzzer ran > 1000 inputs and exited 0
+#   fuzz_smoke CLASS SECONDS TARGET...                 scripts/fuzz TARGET SECONDS $work/TARGET, one case each
 #   junit_check_log CLASS NAME LOG                     pass when the log's last line is "ok"
 #   junit_cannot_run CLASS NAME REASON   the real part cannot run here: a failure naming REASON, or a skip
 #                                        when the user set OFFSHORE_GNC_ALLOW_SKIP=1 (README; CI never does)
@@ -42,6 +43,15 @@ junit_fuzz() {
   else
     junit_case "$1" "$2" fail "fuzz run failed (rc $3) or too few inputs (${execs:-0}); see $4"
   fi
+}
+
+fuzz_smoke() {
+  local class="$1" secs="$2" t rc
+  shift 2
+  for t in "$@"; do
+    "$REPO/scripts/fuzz" "$t" "$secs" "$work/$t" > "$work/$t.out" 2>&1 && rc=0 || rc=$?
+    junit_fuzz "$class" "${t}_fuzz" "$rc" "$work/$t/fuzz.log" "$secs"
+  done
 }
 
 junit_check_log() {
