@@ -6,7 +6,8 @@
 # the cause (qemu missing, kernel download failed, ...); only OFFSHORE_GNC_ALLOW_SKIP=1 makes that a skip.
 # Also the CanGateway + CanEmulator nodelets end to end (test/unit/can/vcan/e2e.test): always with a native
 # vcan, in the VM only with CAN_E2E=1 (about 150 s under software emulation).
-# Env: TEST_RESULTS_DIR (JUnit XML out), WS (catkin workspace with the built test_can_vcan, can_decode).
+# Env: TEST_RESULTS_DIR (JUnit XML out), WS (catkin workspace with the built test_can_vcan, can_decode),
+# CAN_VCAN_MODE=vm (the VM even where the host has vcan), CAN_VM_QEMU (the emulator; tests point it nowhere).
 set -uo pipefail
 source "$(dirname "$0")/lib/junit.sh"
 suite_env can-vcan
@@ -59,7 +60,7 @@ have_vcan() {
 
 t0=$(date +%s)
 mode=""
-if have_vcan; then
+if [ "${CAN_VCAN_MODE:-auto}" != vm ] && have_vcan; then
   mode="host"
   CAN_E2E="${CAN_E2E:-1}" sh "$run/guest.sh"; rc=$?
 else
