@@ -194,6 +194,12 @@ std::string ScriptedPeer::receive(double wait_s) {
   return "";
 }
 
+void abortOnViolation(const char* what, const std::string& violation) {
+  if (violation.empty()) return;
+  std::fprintf(stderr, "relay %s invariant violated: %s\n", what, violation.c_str());
+  std::abort();
+}
+
 // ------------------------------------------------------------------------------------------ wire fuzzing
 std::string fuzzWireOnce(const std::uint8_t* data, std::size_t n) {
   const Authenticator auth("fuzz-key-0123456789abcdef");

@@ -259,7 +259,14 @@ def test_four_masters_several_peers():
 
 def _rss_kb(pid):
     """Resident memory of the relay process (relay_node, exec'd by rosrun, or a nodelet child)."""
-    for pid_ in [pid] + [int(p) for p in os.popen("pgrep -P %d" % pid).read().split()]:
+    children = []  # from /proc, not pgrep: under the sanitizer run's LD_PRELOAD, procps tools can hang
+    for d in os.listdir("/proc"):
+        try:
+            if d.isdigit() and int(open("/proc/%s/stat" % d).read().rsplit(")", 1)[1].split()[1]) == pid:
+                children.append(int(d))
+        except (FileNotFoundError, ProcessLookupError, IndexError, ValueError):
+            pass
+    for pid_ in [pid] + children:
         try:
             cmdline = open("/proc/%d/cmdline" % pid_).read()
             if "relay_node" not in cmdline and "nodelet" not in cmdline:

@@ -81,5 +81,8 @@ std::string fuzzWireOnce(const std::uint8_t* data, std::size_t n);
 // authenticates, memory stays within the engine's limits. Returns "" or the invariant broken.
 std::string fuzzSessionOnce(const std::uint8_t* data, std::size_t n);
 
+// For the libFuzzer entry points: prints the broken invariant and aborts (the fuzzer records the input).
+void abortOnViolation(const char* what, const std::string& violation);
+
 }  // namespace relay
 }  // namespace offshore_gnc
