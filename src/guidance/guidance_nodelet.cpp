@@ -73,7 +73,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     if (sbb_on_) obstacles_sub_ = nh.subscribe("obstacles", 1, &GuidanceNodelet::onObstacles, this);
 
     reconfigure_ = std::make_unique<dynamic_reconfigure::Server<GuidanceConfig>>(reconf_mutex_, pnh);
-    GuidanceConfig c;
+    GuidanceConfig c = GuidanceConfig::__getDefault__();  // a bare one copies unset group flags (UBSan)
     c.kp = lp.kp, c.ki = lp.ki, c.integral_limit = lp.integral_limit, c.adaptive_crab = lp.adaptive_crab;
     c.crab_gain = lp.crab_gain, c.crab_limit = lp.crab_limit, c.acceptance_radius = lp.acceptance_radius;
     c.surge_speed = lp.surge_speed, c.final_radius = lp.final_radius, c.approach_distance = lp.approach_distance;

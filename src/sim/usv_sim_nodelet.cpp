@@ -179,6 +179,9 @@ class UsvSimNodelet : public nodelet::Nodelet {
     sensor_msgs::PointCloud2Modifier mod(c);
     mod.setPointCloud2Fields(4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32,
                              "z", 1, sensor_msgs::PointField::FLOAT32, "ring", 1, sensor_msgs::PointField::UINT16);
+    // Packed, a point is 14 bytes and every other point's floats are misaligned (undefined behaviour for any
+    // reader that uses PointCloud2Iterator, ours included): padded to 16 like the usual driver layouts.
+    c.point_step = 16;
     mod.resize(static_cast<std::size_t>(scan.layers) * scan.beams);
     c.height = scan.layers;  // organised: one row per layer
     c.width = scan.beams;

@@ -96,7 +96,7 @@ def log_text(master, name):
         return ""
 
 
-def link_status(master, timeout=10):
+def link_status(master, timeout=30):  # generous: under the sanitizers a rostopic start alone takes seconds
     return master.wait_for_message("/relay/link_status", timeout=timeout)
 
 
