@@ -1,5 +1,9 @@
-# models: YAML parameter files (yaml-cpp) in the ROS-free core; the model_run CSV tool.
+# models: YAML parameter files (yaml-cpp) and the identification's optimiser (Ceres) in the ROS-free core; the
+# model_run, model_manoeuvre and model_fit tools (model_fit reads rosbags too: ROS) and the fit benchmark's C API.
 find_package(yaml-cpp REQUIRED)
-target_link_libraries(offshore_gnc_core PUBLIC yaml-cpp)
+find_package(Ceres REQUIRED)
+target_link_libraries(offshore_gnc_core PUBLIC yaml-cpp Ceres::ceres)
 offshore_gnc_tool(model_run SOURCES src/models/model_run_main.cpp)
+offshore_gnc_tool(model_manoeuvre SOURCES src/models/model_manoeuvre_main.cpp)
+offshore_gnc_tool(model_fit SOURCES src/models/model_fit_main.cpp ROS)
 offshore_gnc_tool(models_bench SOURCES src/models/models_bench.cpp)
