@@ -43,6 +43,27 @@ class Plant {
 
 std::unique_ptr<Plant> makePlant(FitVehicle v, const std::string& yaml_text, const std::string& source);
 
+// One stage's least-squares problem exactly as the fit poses it (start values, first-pass weights), so that
+// another optimiser can be compared on the same residuals (bench/model_fit.sh: Ceres vs SciPy).
+class StageBench {
+ public:
+  StageBench(FitVehicle v, const std::string& text, const std::string& source, IdentLog log, const FitOptions& opt,
+             const std::string& stage);
+  ~StageBench();
+  int globals() const;   // the coefficients (scaled: 1 = start value)
+  int locals() const;    // per segment (its free initial state)
+  int segments() const;
+  std::vector<int> residualCounts() const;  // per segment
+  std::vector<double> x0() const;           // globals, then each segment's locals
+  std::vector<double> lower() const;        // same layout; -1e300 = none
+  bool residuals(const double* x, double* r) const;
+  int solveCeres(std::vector<double>& x, int max_iterations, double* final_cost);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // Signal helpers shared by the plants and the fit.
 bool isAngle(const std::string& signal);  // yaw_rad: differences are wrapped
 std::string groupSignal(const std::string& group);  // surge -> u, yaw -> r_rad_s, rpm -> rpm, ...

@@ -45,11 +45,13 @@ struct Fields {
   }
 };
 
+// The measured value at row i, else the next one within 2 s (rows of other sensors in between), else 0.
 double measured(const IdentLog& log, const char* s, std::size_t i) {
   const auto it = log.measured.find(s);
   if (it == log.measured.end()) return 0.0;
-  const double v = it->second[i];
-  return std::isfinite(v) ? v : 0.0;
+  for (std::size_t j = i; j < log.rows() && log.t[j] <= log.t[i] + 2.0; ++j)
+    if (std::isfinite(it->second[j])) return it->second[j];
+  return 0.0;
 }
 
 VehicleState measuredState(const IdentLog& log, std::size_t i) {

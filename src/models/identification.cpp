@@ -396,6 +396,25 @@ class Fit {
 
   FitReport run() {
     const std::clock_t c0 = std::clock();
+    prepare();
+    std::vector<std::string> stages;
+    for (const auto& p : plant_->parameters())
+      if (std::find(stages.begin(), stages.end(), p.stage) == stages.end()) stages.push_back(p.stage);
+    for (const auto& s : stages) {
+      const std::clock_t c1 = std::clock();
+      fitStage(s);
+      r_.stage_cpu_seconds[s] = static_cast<double>(std::clock() - c1) / CLOCKS_PER_SEC;
+    }
+    const std::clock_t c2 = std::clock();
+    series();
+    r_.stage_cpu_seconds["validation"] = static_cast<double>(std::clock() - c2) / CLOCKS_PER_SEC;
+    r_.parameters = results_;
+    r_.cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    return r_;
+  }
+
+  // The pieces, noise levels, results table and excitation: what every stage needs first.
+  void prepare() {
     pieces_ = findPieces(log_, opt_, r_.messages);
     r_.pieces = pieces_.size();
     if (pieces_.empty())
@@ -423,20 +442,31 @@ class Fit {
         std::copy(kv.second.begin(), kv.second.end(), v.begin() + static_cast<std::ptrdiff_t>(p.begin));
       }
     }
-    std::vector<std::string> stages;
+  }
+
+  // One stage's problem at the start values with the first pass' weights, for comparing optimisers (bench).
+  struct Bench {
+    StageProblem sp;
+    std::vector<double> xg, lower;
+    std::vector<std::vector<double>> xl;
+  };
+  Bench bench(const std::string& stage) {
+    prepare();
+    Bench b;
+    std::vector<std::string> keys;
     for (const auto& p : plant_->parameters())
-      if (std::find(stages.begin(), stages.end(), p.stage) == stages.end()) stages.push_back(p.stage);
-    for (const auto& s : stages) {
-      const std::clock_t c1 = std::clock();
-      fitStage(s);
-      r_.stage_cpu_seconds[s] = static_cast<double>(std::clock() - c1) / CLOCKS_PER_SEC;
+      if (p.stage == stage && !p.delay) keys.push_back(p.key);
+    if (keys.empty()) throw ConfigError("no stage '" + stage + "' for this model");
+    b.sp = problem(stage, segments(stage), keys);
+    b.xl = initialStates(b.sp);
+    for (std::size_t j = 0; j < keys.size(); ++j) {
+      const double v = start_->get(keys[j]);
+      const FitParameter& fp = result(keys[j]).param;
+      b.xg.push_back(fp.magnitude ? std::abs(v) / b.sp.scale[j] : v / b.sp.scale[j]);
+      b.lower.push_back(fp.magnitude ? 0.0 : std::max(-1e300, fp.lower / b.sp.scale[j]));
     }
-    const std::clock_t c2 = std::clock();
-    series();
-    r_.stage_cpu_seconds["validation"] = static_cast<double>(std::clock() - c2) / CLOCKS_PER_SEC;
-    r_.parameters = results_;
-    r_.cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-    return r_;
+    reweight(b.sp, b.xg, b.xl, false);
+    return b;
   }
 
  private:
@@ -799,7 +829,15 @@ class Fit {
           v[i] = buf[(i - sp.segs[k].begin) * outs.size() + o];
       }
     }
-    if (sp.free_state) r_.segments = sp.segs.size();
+    if (sp.free_state) {
+      r_.segments = sp.segs.size();
+      for (const auto& pc : pieces_)  // each piece's first segment: the open-loop run starts from its state
+        for (std::size_t k = 0; k < sp.segs.size(); ++k)
+          if (sp.segs[k].begin >= pc.begin && sp.segs[k].begin < pc.end) {
+            start_state_[pc.begin] = {sp.segs[k].begin, xl[k]};
+            break;
+          }
+    }
   }
 
   void series() {
@@ -813,15 +851,19 @@ class Fit {
     }
     std::vector<double> buf;
     for (const auto& p : pieces_) {
-      buf.resize((p.end - p.begin) * outs.size());
-      if (!plant_->simulate(log_, env_, opt_.dt, p.begin, p.begin, p.end, nullptr, buf.data())) {
+      // from the state the first segment estimated (after the warm-up), else from the first measured state
+      const auto st = start_state_.find(p.begin);
+      const std::size_t b = st == start_state_.end() ? p.begin : st->second.first;
+      buf.resize((p.end - b) * outs.size());
+      if (!plant_->simulate(log_, env_, opt_.dt, p.begin, b, p.end,
+                            st == start_state_.end() ? nullptr : st->second.second.data(), buf.data())) {
         r_.messages.push_back("the open-loop run from t " + fmt(log_.t[p.begin], 6) + " s did not stay finite");
         continue;
       }
       for (std::size_t o = 0; o < outs.size(); ++o) {
         if (!fs.open_loop.count(outs[o])) continue;
         auto& v = fs.open_loop[outs[o]];
-        for (std::size_t i = p.begin; i < p.end; ++i) v[i] = buf[(i - p.begin) * outs.size() + o];
+        for (std::size_t i = b; i < p.end; ++i) v[i] = buf[(i - b) * outs.size() + o];
       }
     }
     for (const auto& s : outs) {
@@ -869,10 +911,64 @@ class Fit {
   std::map<std::string, std::vector<double>> seg_;
   std::vector<ParameterResult> results_;
   std::map<std::string, std::vector<double>> exc_;
+  std::map<std::size_t, std::pair<std::size_t, std::vector<double>>> start_state_;  // piece -> (row, state)
   FitReport r_;
 };
 
 }  // namespace
+
+struct ident::StageBench::Impl {
+  IdentLog log;
+  std::unique_ptr<Fit> fit;
+  Fit::Bench b;
+};
+
+ident::StageBench::StageBench(FitVehicle v, const std::string& text, const std::string& source, IdentLog log,
+                              const FitOptions& opt, const std::string& stage)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->log = std::move(log);
+  impl_->fit = std::make_unique<Fit>(v, text, source, impl_->log, opt);
+  impl_->b = impl_->fit->bench(stage);
+}
+ident::StageBench::~StageBench() = default;
+int ident::StageBench::globals() const { return static_cast<int>(impl_->b.xg.size()); }
+int ident::StageBench::locals() const { return impl_->b.sp.free_state ? static_cast<int>(impl_->b.xl[0].size()) : 0; }
+int ident::StageBench::segments() const { return static_cast<int>(impl_->b.sp.segs.size()); }
+std::vector<int> ident::StageBench::residualCounts() const {
+  std::vector<int> n;
+  for (const auto& it : impl_->b.sp.items) n.push_back(static_cast<int>(it.size()));
+  return n;
+}
+std::vector<double> ident::StageBench::x0() const {
+  std::vector<double> x = impl_->b.xg;
+  for (const auto& l : impl_->b.xl) x.insert(x.end(), l.begin(), l.end());
+  return x;
+}
+std::vector<double> ident::StageBench::lower() const {
+  std::vector<double> x = impl_->b.lower;
+  x.resize(x.size() + static_cast<std::size_t>(segments() * locals()), -1e300);
+  return x;
+}
+bool ident::StageBench::residuals(const double* x, double* r) const {
+  const auto& sp = impl_->b.sp;
+  const int ng = globals(), nl = locals();
+  for (std::size_t k = 0; k < sp.segs.size(); ++k) {
+    if (!sp.residuals(k, x, x + ng + static_cast<int>(k) * nl, r)) return false;
+    r += sp.items[k].size();
+  }
+  return true;
+}
+int ident::StageBench::solveCeres(std::vector<double>& x, int max_iterations, double* final_cost) {
+  auto& b = impl_->b;
+  const int ng = globals(), nl = locals();
+  std::copy(x.begin(), x.begin() + ng, b.xg.begin());
+  for (std::size_t k = 0; k < b.xl.size(); ++k)
+    std::copy(x.begin() + ng + static_cast<long>(k) * nl, x.begin() + ng + static_cast<long>(k + 1) * nl, b.xl[k].begin());
+  const SolveResult r = solve(b.sp, b.xg, b.lower, b.xl, max_iterations, false);
+  x = x0();
+  if (final_cost) *final_cost = 0.5 * b.sp.cost(b.xg.data(), b.xl);
+  return r.iterations;
+}
 
 double nrmseFit(const std::vector<double>& measured, const std::vector<double>& simulated) {
   return nrmse(measured, simulated);

@@ -143,7 +143,7 @@ void writeSeries(const FitReport& r, const std::string& path) {
 int plot(const std::string& dir) {
   const pid_t pid = fork();
   if (pid == 0) {
-    execl("/usr/bin/python3", "python3", "-m", "offshore_gnc.model_report", dir.c_str(), static_cast<char*>(nullptr));
+    execl("/usr/bin/python3", "/usr/bin/python3", "-m", "offshore_gnc.model_report", dir.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
   int status = 0;

@@ -7,3 +7,6 @@ offshore_gnc_tool(model_run SOURCES src/models/model_run_main.cpp)
 offshore_gnc_tool(model_manoeuvre SOURCES src/models/model_manoeuvre_main.cpp)
 offshore_gnc_tool(model_fit SOURCES src/models/model_fit_main.cpp ROS)
 offshore_gnc_tool(models_bench SOURCES src/models/models_bench.cpp)
+# bench/model_fit.sh loads this with ctypes: SciPy and Ceres on the same residuals
+add_library(offshore_gnc_model_fit_bench SHARED src/models/model_fit_bench.cpp)
+target_link_libraries(offshore_gnc_model_fit_bench offshore_gnc_core)

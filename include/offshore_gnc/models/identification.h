@@ -64,7 +64,7 @@ struct SignalFit {
   std::size_t samples = 0;
   double noise = 0;         // residual RMS of the fit (the weight used) [signal units]
   double segment_fit = 0;   // NRMSE fit [%] of the simulations the estimate minimised
-  double open_loop_fit = 0; // NRMSE fit [%] of one open-loop run per piece from its first measured state
+  double open_loop_fit = 0; // NRMSE fit [%] of one open-loop run per piece (from its first segment's state)
   bool motion = true;       // false: the signal varies no more than 3x its residual (noise only; fit % meaningless)
 };
 
