@@ -88,5 +88,13 @@ CsvTable readCsvFile(const std::string& path, const CsvOptions& opt) {
   return readCsvTable(f, path, opt);
 }
 
+std::string readTextFile(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw ConfigError(path + ": cannot open the file");
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
 }  // namespace models
 }  // namespace offshore_gnc

@@ -618,9 +618,15 @@ class Fit {
     SolveResult sr = solve(sp, xg, lower, xl, opt_.max_iterations / 2, false, 1e-5);
     r_.iterations += sr.iterations;
     reweight(sp, xg, xl, true);
-    for (const auto& d : delays) scanDelay(sp, d, xg, xl, true);
-    sr = solve(sp, xg, lower, xl, opt_.max_iterations, true);
+    sr = solve(sp, xg, lower, xl, opt_.max_iterations, delays.empty());
     r_.iterations += sr.iterations;
+    if (!delays.empty()) {
+      // A delay trades against the lags around it: walk it step by step while the cost with the other
+      // coefficients re-fitted at each step (the profile) falls, then take the standard errors there.
+      for (const auto& d : delays) profileDelay(sp, d, xg, lower, xl);
+      sr = solve(sp, xg, lower, xl, opt_.max_iterations, true);
+      r_.iterations += sr.iterations;
+    }
     // A coefficient the log determines only loosely is not an estimate: keep the start value, say why, refit.
     std::vector<std::string> loose;
     for (std::size_t j = 0; j < keys.size(); ++j) {
@@ -757,6 +763,34 @@ class Fit {
       const double floor = 1e-3 * noise_.at(sp.signals[s]);
       const double inflate = correlated ? std::sqrt((1.0 + rho[s]) / (1.0 - rho[s])) : 1.0;
       if (std::isfinite(rms[s])) sp.weight[s] = 1.0 / (std::max(rms[s], floor) * inflate);
+    }
+  }
+
+  void profileDelay(StageProblem& sp, const std::string& key, std::vector<double>& xg,
+                    const std::vector<double>& lower, std::vector<std::vector<double>>& xl) {
+    double best = sp.cost(xg.data(), xl);
+    int direction = 0;  // keep walking the way that helped
+    for (int step = 0; step < 40; ++step) {
+      const double cur = plant_->get(key);
+      bool moved = false;
+      for (int dir : {direction ? direction : -1, direction ? 0 : 1}) {
+        if (dir == 0 || cur + dir * opt_.dt < -1e-12) continue;
+        plant_->set(key, std::max(0.0, cur + dir * opt_.dt));
+        std::vector<double> g = xg;
+        std::vector<std::vector<double>> l = xl;
+        r_.iterations += solve(sp, g, lower, l, opt_.max_iterations / 2, false, 1e-6).iterations;
+        const double c = sp.cost(g.data(), l);
+        if (c < best) {
+          best = c;
+          xg = g;
+          xl = l;
+          direction = dir;
+          moved = true;
+          break;
+        }
+        plant_->set(key, cur);
+      }
+      if (!moved) break;
     }
   }
 

@@ -6,21 +6,11 @@
 #include <string>
 
 #include "ident_plant.h"
+#include "offshore_gnc/models/csv_table.h"
 #include "offshore_gnc/models/ident_log.h"
 
 using namespace offshore_gnc::models;
 
-namespace {
-std::string readAll(const char* path) {
-  FILE* f = std::fopen(path, "rb");
-  if (!f) throw std::runtime_error(std::string(path) + ": cannot open the file");
-  std::string s;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) s.append(buf, n);
-  std::fclose(f);
-  return s;
-}
-}  // namespace
 
 extern "C" {
 
@@ -28,7 +18,7 @@ extern "C" {
 void* ofg_fit_open(const char* vehicle, const char* params, const char* log, const char* stage, char* err, int errlen) {
   try {
     const FitVehicle v = fitVehicleFromName(vehicle);
-    const std::string text = readAll(params);
+    const std::string text = readTextFile(params);
     IdentLog l = readIdentLogCsv(log, fitCommandColumns(v, text, params));
     return new ident::StageBench(v, text, params, std::move(l), FitOptions(), stage);
   } catch (const std::exception& e) {

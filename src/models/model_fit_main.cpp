@@ -16,6 +16,8 @@
 #include <string>
 
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/models/cli.h"
+#include "offshore_gnc/models/csv_table.h"
 #include "offshore_gnc/models/identification.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "ros_models_bag.h"
@@ -31,14 +33,6 @@ int usage(const std::string& msg) {
                "                 [--output FIT.yaml] [--report DIR] [--validate] [--env ENV.yaml] [--dt S]\n"
                "                 [--segment S] [--warmup S] [--max-gap S] [--max-rel-se X] [--fix KEY,KEY] [--no-plots]\n";
   return 2;
-}
-
-std::string readText(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw ConfigError(path + ": cannot open the file");
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
 }
 
 bool endsWith(const std::string& s, const std::string& e) {
@@ -157,46 +151,35 @@ int main(int argc, char** argv) {
   std::string vehicle, params, input, output, report, env_file;
   bool validate = false, plots = true;
   FitOptions opt;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") return usage("help"), 0;
-    if (a == "--validate") {
-      validate = true;
-      continue;
-    }
-    if (a == "--no-plots") {
-      plots = false;
-      continue;
-    }
-    if (i + 1 >= argc) return usage("missing value for " + a);
-    const std::string v = argv[++i];
-    try {
-      if (a == "--vehicle") vehicle = v;
-      else if (a == "--params") params = v;
-      else if (a == "--input") input = v;
-      else if (a == "--output") output = v;
-      else if (a == "--report") report = v;
-      else if (a == "--env") env_file = v;
-      else if (a == "--dt") opt.dt = requireRange("--dt", std::stod(v), 1e-4, 1.0);
-      else if (a == "--segment") opt.segment = requireRange("--segment", std::stod(v), 1.0, 1e5);
-      else if (a == "--warmup") opt.warmup = requireRange("--warmup", std::stod(v), 0.0, 1e4);
-      else if (a == "--max-gap") opt.max_gap = requireRange("--max-gap", std::stod(v), 1e-3, 1e5);
-      else if (a == "--max-rel-se") opt.max_rel_se = requireRange("--max-rel-se", std::stod(v), 1e-3, 1e3);
-      else if (a == "--fix") {
-        std::stringstream ss(v);
-        std::string k;
-        while (std::getline(ss, k, ',')) opt.fixed.push_back(k);
-      } else return usage("unknown option " + a);
-    } catch (const std::exception& e) {
-      return usage(std::string("bad value for ") + a + ": " + e.what());
-    }
-  }
+  std::string fix;
+  bool no_plots = false;
+  const std::string err = CliOptions()
+                              .text("--vehicle", &vehicle)
+                              .text("--params", &params)
+                              .text("--input", &input)
+                              .text("--output", &output)
+                              .text("--report", &report)
+                              .text("--env", &env_file)
+                              .flag("--validate", &validate)
+                              .flag("--no-plots", &no_plots)
+                              .number("--dt", &opt.dt, 1e-4, 1.0)
+                              .number("--segment", &opt.segment, 1.0, 1e5)
+                              .number("--warmup", &opt.warmup, 0.0, 1e4)
+                              .number("--max-gap", &opt.max_gap, 1e-3, 1e5)
+                              .number("--max-rel-se", &opt.max_rel_se, 1e-3, 1e3)
+                              .text("--fix", &fix)
+                              .parse(argc, argv);
+  if (err == "help") return usage(err), 0;
+  if (!err.empty()) return usage(err);
+  plots = !no_plots;
+  std::stringstream fixes(fix);
+  for (std::string k; std::getline(fixes, k, ',');) opt.fixed.push_back(k);
   if (vehicle.empty() || params.empty() || input.empty()) return usage("--vehicle, --params and --input are required");
   if (validate && !output.empty()) return usage("--validate writes no parameter file (drop --output)");
   opt.estimate = !validate;
   try {
     const FitVehicle v = fitVehicleFromName(vehicle);
-    const std::string text = readText(params);
+    const std::string text = readTextFile(params);
     if (!env_file.empty()) opt.environment = loadEnvironmentParams(env_file);
     const auto columns = fitCommandColumns(v, text, params);
     IdentLog log;

@@ -26,6 +26,7 @@
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/models/cli.h"
 #include "offshore_gnc/models/auv.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/models/usv.h"
@@ -258,24 +259,19 @@ int main(int argc, char** argv) {
   std::string vehicle, params, plan = "standard", output = "-";
   double period = 0.1, duration = 0;
   unsigned seed = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") return usage("help"), 0;
-    if (i + 1 >= argc) return usage("missing value for " + a);
-    const std::string v = argv[++i];
-    try {
-      if (a == "--vehicle") vehicle = v;
-      else if (a == "--params") params = v;
-      else if (a == "--plan") plan = v;
-      else if (a == "--output") output = v;
-      else if (a == "--period") period = requireRange("--period", std::stod(v), 0.01, 10);
-      else if (a == "--duration") duration = requireRange("--duration", std::stod(v), 0, 1e6);
-      else if (a == "--seed") seed = static_cast<unsigned>(requireRange("--seed", std::stod(v), 0, 1e9));
-      else return usage("unknown option " + a);
-    } catch (const std::exception& e) {
-      return usage(std::string("bad value for ") + a + ": " + e.what());
-    }
-  }
+  double seed_n = 1;
+  const std::string err = CliOptions()
+                              .text("--vehicle", &vehicle)
+                              .text("--params", &params)
+                              .text("--plan", &plan)
+                              .text("--output", &output)
+                              .number("--period", &period, 0.01, 10)
+                              .number("--duration", &duration, 0, 1e6)
+                              .number("--seed", &seed_n, 0, 1e9)
+                              .parse(argc, argv);
+  if (err == "help") return usage(err), 0;
+  if (!err.empty()) return usage(err);
+  seed = static_cast<unsigned>(seed_n);
   if (params.empty()) return usage("--params is required");
   try {
     std::unique_ptr<Driver> d;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/models/cli.h"
 #include "offshore_gnc/models/auv.h"
 #include "offshore_gnc/models/csv_table.h"
 #include "offshore_gnc/models/params_yaml.h"
@@ -40,24 +41,19 @@ int main(int argc, char** argv) {
   std::string vehicle, params, env_file, input = "-", output = "-";
   double dt = 0.01;
   long every = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") return usage("help"), 0;
-    if (i + 1 >= argc) return usage("missing value for " + a);
-    const std::string v = argv[++i];
-    try {
-      if (a == "--vehicle") vehicle = v;
-      else if (a == "--params") params = v;
-      else if (a == "--env") env_file = v;
-      else if (a == "--input") input = v;
-      else if (a == "--output") output = v;
-      else if (a == "--dt") dt = requireRange("--dt", std::stod(v), 1e-4, 1.0);
-      else if (a == "--every") every = static_cast<long>(requireRange("--every", std::stod(v), 1, 1e6));
-      else return usage("unknown option " + a);
-    } catch (const std::exception& e) {
-      return usage(std::string("bad value for ") + a + ": " + e.what());
-    }
-  }
+  double every_n = 1;
+  const std::string err = CliOptions()
+                              .text("--vehicle", &vehicle)
+                              .text("--params", &params)
+                              .text("--env", &env_file)
+                              .text("--input", &input)
+                              .text("--output", &output)
+                              .number("--dt", &dt, 1e-4, 1.0)
+                              .number("--every", &every_n, 1, 1e6)
+                              .parse(argc, argv);
+  if (err == "help") return usage(err), 0;
+  if (!err.empty()) return usage(err);
+  every = static_cast<long>(every_n);
   if (vehicle != "usv" && vehicle != "auv") return usage("--vehicle must be usv or auv");
   if (params.empty()) return usage("--params is required");
 

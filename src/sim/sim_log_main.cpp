@@ -17,6 +17,8 @@
 #include <string>
 
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/models/cli.h"
+#include "offshore_gnc/models/cli.h"
 #include "offshore_gnc/models/csv_table.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/sim/simulation.h"
@@ -63,25 +65,20 @@ int main(int argc, char** argv) {
   std::string vehicle, params, input, output = "-", scenario_file;
   double dt = 0.01, rpm_sigma = 0.0;
   std::uint64_t seed = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") return usage("help"), 0;
-    if (i + 1 >= argc) return usage("missing value for " + a);
-    const std::string v = argv[++i];
-    try {
-      if (a == "--vehicle") vehicle = v;
-      else if (a == "--params") params = v;
-      else if (a == "--input") input = v;
-      else if (a == "--output") output = v;
-      else if (a == "--scenario") scenario_file = v;
-      else if (a == "--dt") dt = requireRange("--dt", std::stod(v), 1e-4, 0.1);
-      else if (a == "--rpm-sigma") rpm_sigma = requireRange("--rpm-sigma", std::stod(v), 0, 1e4);
-      else if (a == "--seed") seed = static_cast<std::uint64_t>(requireRange("--seed", std::stod(v), 0, 1e9));
-      else return usage("unknown option " + a);
-    } catch (const std::exception& e) {
-      return usage(std::string("bad value for ") + a + ": " + e.what());
-    }
-  }
+  double seed_n = 1;
+  const std::string err = models::CliOptions()
+                              .text("--vehicle", &vehicle)
+                              .text("--params", &params)
+                              .text("--input", &input)
+                              .text("--output", &output)
+                              .text("--scenario", &scenario_file)
+                              .number("--dt", &dt, 1e-4, 0.1)
+                              .number("--rpm-sigma", &rpm_sigma, 0, 1e4)
+                              .number("--seed", &seed_n, 0, 1e9)
+                              .parse(argc, argv);
+  if (err == "help") return usage(err), 0;
+  if (!err.empty()) return usage(err);
+  seed = static_cast<std::uint64_t>(seed_n);
   if (params.empty() || input.empty()) return usage("--params and --input are required");
   if (vehicle != "usv" && vehicle != "girona500" && vehicle != "acolor")
     return usage("--vehicle must be usv, girona500 or acolor");

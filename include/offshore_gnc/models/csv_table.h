@@ -26,6 +26,8 @@ struct CsvOptions {
 // column) that is not finite or goes backwards.
 CsvTable readCsvTable(std::istream& in, const std::string& source, const CsvOptions& opt = CsvOptions());
 CsvTable readCsvFile(const std::string& path, const CsvOptions& opt = CsvOptions());
+// A whole text file (parameter files); ConfigError("<path>: cannot open the file").
+std::string readTextFile(const std::string& path);
 
 }  // namespace models
 }  // namespace offshore_gnc
