@@ -1,7 +1,7 @@
 # Model identification: model_fit on a 10-min simulated GPS-compass log (hidden coefficients 30 % off), and its hull stage by Ceres vs SciPy least_squares on the same residuals
 # Usage: ./scripts/bench model_fit [DURATION_S]   (default 600)
 # 1. model_manoeuvre (standard plan) -> sim_log (the simulators' UsvSimulation: GPS-compass noise, rpm noise
-#    10 rpm) on a boat with X_u, X_uu, X_udot, N_r, N_rr, N_rdot and eq. 3.24 30 % off the config's.
+#    5 rpm) on a boat with X_u, X_uu, X_udot, N_r, N_rr, N_rdot and eq. 3.24's coefficients 30 % off the config's.
 # 2. model_fit from the config: wall and CPU time, the recovered coefficients' errors, the fits.
 # 3. The hull stage (Table 3.4, multiple shooting) alone from the config's coefficients (actuators as fitted):
 #    Ceres (what model_fit uses) vs SciPy least_squares (trf, the sparse Jacobian pattern given, 2-point
@@ -22,7 +22,7 @@ work, duration = sys.argv[1], sys.argv[2]
 BIN, LIB = os.environ["BIN"], os.environ["LIB"]
 USV = "config/models/usv.yaml"
 factors = {"X_u": 1.3, "X_uu": 1.3, "X_udot": 0.7, "N_r": 0.7, "N_rr": 1.3, "N_rdot": 1.3}
-rpm = {"rpm_num": [0.317 * 1.3, 2.793 * 0.7, 1.828 * 1.3], "rpm_den": [1.0, 3.499 * 1.3, 1.828 * 1.3]}
+rpm = {"rpm_num": [0.317 * 1.3, 2.793 * 1.3, 1.828 * 1.3], "rpm_den": [1.0, 3.499 * 1.3, 1.828 * 1.3]}
 text = open(USV).read()
 truth = {}
 for k, f in factors.items():
@@ -36,7 +36,7 @@ open(work + "/true.yaml", "w").write(text)
 run = lambda *a: subprocess.run(list(a), check=True, stdout=subprocess.PIPE, text=True).stdout
 run(BIN + "/model_manoeuvre", "--vehicle", "usv", "--params", USV, "--duration", duration, "--output", work + "/cmd.csv")
 run(BIN + "/sim_log", "--vehicle", "usv", "--params", work + "/true.yaml", "--input", work + "/cmd.csv",
-    "--output", work + "/log.csv", "--rpm-sigma", "10", "--seed", "5")
+    "--output", work + "/log.csv", "--rpm-sigma", "5", "--seed", "5")
 
 t0, c0 = time.time(), resource.getrusage(resource.RUSAGE_CHILDREN)
 out = run(BIN + "/model_fit", "--vehicle", "usv", "--params", USV, "--input", work + "/log.csv",

@@ -454,10 +454,11 @@ class Fit {
     prepare();
     Bench b;
     std::vector<std::string> keys;
-    for (const auto& p : plant_->parameters())
-      if (p.stage == stage && !p.delay) keys.push_back(p.key);
-    if (keys.empty()) throw ConfigError("no stage '" + stage + "' for this model");
-    b.sp = problem(stage, segments(stage), keys);
+    const auto segs = segments(stage);
+    for (const auto& p : plant_->parameters())  // what model_fit would estimate (excited, not a delay)
+      if (p.stage == stage && !p.delay && cannotEstimate(p.group, stage, segs, exc_).empty()) keys.push_back(p.key);
+    if (keys.empty()) throw ConfigError("nothing to estimate in stage '" + stage + "' of this model from this log");
+    b.sp = problem(stage, segs, keys);
     b.xl = initialStates(b.sp);
     for (std::size_t j = 0; j < keys.size(); ++j) {
       const double v = start_->get(keys[j]);

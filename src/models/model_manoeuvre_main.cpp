@@ -7,9 +7,9 @@
 //   zigzag10  10/10 zig-zag: nozzle (USV) at +-10 deg, switched when the heading has changed +-10 deg; 6 switches
 //   zigzag20  20/20 zig-zag (the AUV's "rudder" is a yaw moment of 40 % / 80 % of its maximum)
 //   turn      turning circle: full yaw for 400 deg to starboard, then to port
-//   prbs      pseudo-random binary sequence on surge (+-0.2 about the cruise) and yaw (+-0.4), 2 s clock, 120 s
+//   prbs      pseudo-random binary sequences on surge (+-0.2 about the cruise, 0.5 s clock) and yaw (+-0.4, 2 s), 120 s
 //   sway, heave  (AUV) steps of the sway / heave force
-//   standard  USV: steps,zigzag10,zigzag20@0.8,turn,zigzag20@1,turn@1,prbs; AUV: steps,zigzag10,turn,sway,heave,prbs
+//   standard  USV: steps,zigzag10@0.4,prbs,zigzag20@1,turn@0.3,zigzag20@0.6,turn@1 (several speeds); AUV: steps,zigzag10,turn,sway,heave,prbs
 // --duration repeats the plan until that many seconds (cut there). Heading switches are timed on the model of
 // --params in calm water: on another boat the angles differ a little, which still excites the same dynamics.
 #include <algorithm>
@@ -223,10 +223,12 @@ class Plan {
       set(surge, 0);
       return hold(15.0);
     }
-    if (name == "prbs") {
-      for (double e = 0; e < 120.0 - 1e-9; e += 2.0) {
-        set(std::clamp(surge + (prbs_.next() ? 0.2 : -0.2), 0.1, 1.0), prbs_.next() ? 0.4 : -0.4);
-        if (!hold(2.0)) return false;
+    if (name == "prbs") {  // surge clocked at 0.5 s (the engine's 1-4 rad/s), yaw at 2 s (the hull's)
+      double yaw = 0.4;
+      for (int k = 0; k < 240; ++k) {
+        if (k % 4 == 0) yaw = prbs_.next() ? 0.4 : -0.4;
+        set(std::clamp(surge + (prbs_.next() ? 0.2 : -0.2), 0.1, 1.0), yaw);
+        if (!hold(0.5)) return false;
       }
       return true;
     }
@@ -283,7 +285,7 @@ int main(int argc, char** argv) {
     std::stringstream ss(plan);
     for (std::string it; std::getline(ss, it, ',');) {
       if (it == "standard") {
-        const char* usv_std[] = {"steps", "zigzag10", "zigzag20@0.8", "turn", "zigzag20@1", "turn@1", "prbs"};
+        const char* usv_std[] = {"steps", "zigzag10@0.4", "prbs", "zigzag20@1", "turn@0.3", "zigzag20@0.6", "turn@1"};
         const char* auv_std[] = {"steps", "zigzag10", "turn", "sway", "heave", "prbs"};
         if (auv) items.insert(items.end(), std::begin(auv_std), std::end(auv_std));
         else items.insert(items.end(), std::begin(usv_std), std::end(usv_std));
