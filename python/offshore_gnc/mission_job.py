@@ -51,6 +51,8 @@ def parse_args(argv=None):
     ap.add_argument("--after-kill", type=float, default=60.0,
                     help="simulated seconds to keep watching the surviving vehicle after a stack died (default 60)")
     a = ap.parse_args(argv)
+    if a.usv_params and not os.path.isfile(a.usv_params):
+        ap.error("--usv-params: no file %s" % a.usv_params)
     if a.kill:
         v, _, t = a.kill.partition("@")
         try:
