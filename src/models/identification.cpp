@@ -423,6 +423,7 @@ class Fit {
     for (const auto& p : pieces_) r_.used_rows += p.end - p.begin;
     for (const auto& s : plant_->outputs()) {
       noise_[s] = noiseLevel(log_, s, pieces_);
+      spread_[s] = spreadOf(s);
       const std::size_t c = log_.count(s);
       if (c > 0 && c < log_.rows() / 2 && log_.rows() > 10)
         r_.messages.push_back("'" + s + "' has a value in " + std::to_string(c) + " of " +
@@ -761,7 +762,8 @@ class Fit {
     std::vector<double> rms, rho;
     sp.stats(xg.data(), xl, rms, rho);
     for (std::size_t s = 0; s < sp.signals.size(); ++s) {
-      const double floor = 1e-3 * noise_.at(sp.signals[s]);
+      // a noise-free signal (simulated, or quantised) must not weigh a million times the others
+      const double floor = std::max(1e-3 * noise_.at(sp.signals[s]), 1e-4 * spread_.at(sp.signals[s]));
       const double inflate = correlated ? std::sqrt((1.0 + rho[s]) / (1.0 - rho[s])) : 1.0;
       if (std::isfinite(rms[s])) sp.weight[s] = 1.0 / (std::max(rms[s], floor) * inflate);
     }
@@ -793,6 +795,21 @@ class Fit {
       }
       if (!moved) break;
     }
+  }
+
+  // Standard deviation of a measured signal over the pieces (0 when not logged).
+  double spreadOf(const std::string& s) const {
+    const auto it = log_.measured.find(s);
+    if (it == log_.measured.end()) return 0.0;
+    double sum = 0, sum2 = 0, n = 0;
+    for (const auto& p : pieces_)
+      for (std::size_t i = p.begin; i < p.end; ++i)
+        if (std::isfinite(it->second[i])) {
+          sum += it->second[i];
+          sum2 += it->second[i] * it->second[i];
+          n += 1;
+        }
+    return n > 1 ? std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n))) : 0.0;
   }
 
   // A delay by scanning the step grid (the simulated delay is piecewise constant in it, so no gradient).
@@ -924,15 +941,7 @@ class Fit {
       f.noise = fit_noise_.count(s) ? fit_noise_[s] : kNaN;
       f.segment_fit = nrmse(m, sg);
       f.open_loop_fit = nrmse(m, ol);
-      double sum = 0, sum2 = 0, n = 0;
-      for (double y : m)
-        if (std::isfinite(y)) {
-          sum += y;
-          sum2 += y * y;
-          n += 1;
-        }
-      const double sd = n > 1 ? std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n))) : 0.0;
-      f.motion = !(sd <= 3.0 * (std::isfinite(f.noise) ? f.noise : noise_.at(s)));
+      f.motion = !(spread_.at(s) <= 3.0 * (std::isfinite(f.noise) ? f.noise : noise_.at(s)));
       r_.fits.push_back(f);
     }
   }
@@ -942,7 +951,7 @@ class Fit {
   FitOptions opt_;
   Environment env_;
   std::vector<Piece> pieces_;
-  std::map<std::string, double> noise_, fit_noise_;
+  std::map<std::string, double> noise_, fit_noise_, spread_;
   std::map<std::string, std::vector<double>> seg_;
   std::vector<ParameterResult> results_;
   std::map<std::string, std::vector<double>> exc_;

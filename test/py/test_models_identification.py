@@ -19,7 +19,6 @@ import pytest
 HERE = os.path.abspath(__file__)
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
 USV = os.path.join(REPO, "config", "models", "usv.yaml")
-G500 = os.path.join(REPO, "config", "models", "girona500.yaml")
 # the hidden boat: Table 3.4 and eq. 3.24 coefficients 30 % off the config's (the engine: every coefficient of
 # eq. 3.24 30 % larger, unit gain kept)
 USV_FACTORS = {"X_u": 1.3, "X_uu": 1.3, "X_udot": 0.7, "N_r": 0.7, "N_rr": 1.3, "N_rdot": 1.3}
@@ -257,22 +256,24 @@ def test_bad_input_is_refused_with_the_reason(tmp_path, usv_log):
     assert r.returncode == 1 and "not one of: usv, girona500, acolor" in r.stderr, r.stderr
 
 
-def test_girona500_damping_and_added_mass(tmp_path):
-    text = open(G500).read()
+@pytest.mark.parametrize("vehicle", ["girona500", "acolor"])
+def test_auv_damping_and_added_mass(tmp_path, vehicle):
+    start = os.path.join(REPO, "config", "models", vehicle + ".yaml")
+    text = open(start).read()
     factors = {"X_uu": 1.3, "Y_vv": 0.7, "Z_ww": 1.3, "N_r": 0.7, "N_rr": 1.3, "X_udot": 0.7}
     truth = {}
     for k, f in factors.items():
         v = float(re.search(r"^%s:\s*(\S+)" % k, text, re.M).group(1))
         truth[k] = v * f
         text = re.sub(r"^%s:.*$" % k, "%s: %r" % (k, truth[k]), text, flags=re.M)
-    true = tmp_path / "g500.yaml"
+    true = tmp_path / "true.yaml"
     true.write_text(text)
     cmd, log = str(tmp_path / "cmd.csv"), str(tmp_path / "log.csv")
-    run([tool("model_manoeuvre"), "--vehicle", "girona500", "--params", G500, "--output", cmd])  # standard, 10 min
-    run([tool("sim_log"), "--vehicle", "girona500", "--params", str(true), "--input", cmd, "--output", log])
-    r, rep, out = fit(log, str(tmp_path), "g500", params=G500, vehicle="girona500")
+    run([tool("model_manoeuvre"), "--vehicle", vehicle, "--params", start, "--output", cmd])  # standard, 10 min
+    run([tool("sim_log"), "--vehicle", vehicle, "--params", str(true), "--input", cmd, "--output", log])
+    r, rep, out = fit(log, str(tmp_path), vehicle, params=start, vehicle=vehicle)
     assert_recovered(rep, list(factors), 0.10, lambda k: truth[k])
-    assert "type: girona500" in open(out).read()
+    assert "type: %s" % vehicle in open(out).read()
 
 
 def test_a_bag_recorded_by_usv_launch(tmp_path, usv_log):
