@@ -47,13 +47,17 @@ def _drive(argv):
     while (cmd.get_num_connections() < 2 or step.get_num_connections() < 1) and time.time() < deadline:
         time.sleep(0.05)
     time.sleep(1.0)
+    last = None
     for i in range(len(rows) - 1):
         t, surge, sway, yaw = rows[i]
         m = JoystickCommand(surge=surge, sway=sway, yaw=yaw, source=JoystickCommand.SOURCE_JOYSTICK,
                             priority=JoystickCommand.PRIORITY_MANUAL)
         m.header.stamp = rospy.Time.from_sec(now[0])
         cmd.publish(m)
-        time.sleep(0.015)  # the command reaches the simulator (its nodelet manager) before the steps
+        # A new command must reach the simulator (a busy nodelet manager's worker) before the steps, or the bag's
+        # stamps would not be when the jets acted; a repeated one only keeps the manual priority fresh.
+        time.sleep(0.3 if rows[i][1:] != last else 0.002)
+        last = rows[i][1:]
         step.publish(UInt32(int(round((rows[i + 1][0] - t) / 0.01))))
         limit = time.time() + 20
         while now[0] < rows[i + 1][0] - 0.005 and time.time() < limit:
