@@ -306,11 +306,19 @@ def test_a_bag_recorded_by_usv_launch(tmp_path, usv_log):
     env = tmp_path / "pyhajarvi_water.yaml"  # the default scenario's current, as models::EnvironmentParams
     env.write_text("current_east: 0.2\ncurrent_variation: 0.02\nseed: 1\n")
     r, rep, out = fit(bag, str(tmp_path), "bag", extra=["--env", str(env)])
-    assert rep["pieces"] == 1, r.stdout
-    # the simulator ran the hidden boat (30 % off the config's), so usv_params:= reached it
-    assert_recovered(rep, ["X_uu", "N_r", "N_rr"], 0.10, usv_true)
-    fits = {f["signal"]: f for f in rep["fits"]}
-    for s in ("north", "east", "yaw_rad", "u", "r_rad_s", "rpm", "nozzle"):
-        assert fits[s]["motion"] and fits[s]["segment_fit_pct"] > 85, fits[s]
-    # The engine coefficients are not checked here: in a live stack a command now and then reaches the jets a
-    # step or a row after its stamp (a busy nodelet manager), which the CSV test's log does not have.
+    assert rep["pieces"] == 1 and rep["rows"] > 2000, r.stdout
+    assert_recovered(rep, ["X_uu"], 0.10, usv_true)
+    # The bag holds the hidden boat, so usv_params:= reached the simulator: its file fits the bag, the config's
+    # does not.
+    def validate(params, name):
+        run([tool("model_fit"), "--vehicle", "usv", "--params", params, "--input", bag, "--env", str(env),
+             "--validate", "--report", str(tmp_path / name), "--no-plots"])
+        return {f["signal"]: f for f in json.load(open(str(tmp_path / name / "fit.json")))["fits"]}
+    hidden, config = validate(true, "hidden"), validate(USV, "config")
+    for s in ("north", "east", "yaw_rad", "u", "r_rad_s", "rpm"):
+        assert hidden[s]["open_loop_fit_pct"] > 85, hidden[s]
+    assert hidden["north"]["open_loop_fit_pct"] > config["north"]["open_loop_fit_pct"] + 5, (hidden, config)
+    assert hidden["rpm"]["open_loop_fit_pct"] > config["rpm"]["open_loop_fit_pct"], (hidden, config)
+    # Yaw and engine coefficients are not checked here: in a live stack on a busy machine a command now and then
+    # reaches the jets a row after its stamp (the nodelet manager's worker was busy), which the CSV tests' logs
+    # do not have; model_fit then says so (large standard errors) rather than estimating them wrongly.
