@@ -61,6 +61,8 @@ def parse_args(argv=None):
                     help="each simulator keeps its own clock at --rate (no shared lockstep time)")
     ap.add_argument("--max-sim-time", type=float, default=None, help="give up after this simulated time [s]")
     ap.add_argument("--auv-model", default="girona500", choices=["girona500", "acolor"])
+    ap.add_argument("--usv-params", default="", metavar="FILE",
+                    help="the simulated USV's model parameter file (config/models/ schema, e.g. from model_fit)")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
     ap.add_argument("--screenshot", action="store_true",
                     help="rviz (USV configuration) under Xvfb during the mission: rviz_usv.png in the report")
@@ -69,6 +71,8 @@ def parse_args(argv=None):
     ap.add_argument("--after-kill", type=float, default=60.0,
                     help="simulated seconds to keep watching the surviving vehicle after a stack died (default 60)")
     a = ap.parse_args(argv)
+    if a.usv_params and not os.path.isfile(a.usv_params):
+        ap.error("--usv-params: no file %s" % a.usv_params)
     if a.kill:
         v, _, t = a.kill.partition("@")
         try:
@@ -210,7 +214,8 @@ def run(a):
         relay = relay_configs(os.path.join(out, "logs"))  # a free link port: missions side by side never meet
         launches = {
             "usv": ms["usv"].roslaunch(os.path.join(REPO, "launch", "usv.launch"), dict(
-                common, bag=os.path.join(out, "usv.bag"), rviz=str(a.rviz).lower(), relay_config=relay["usv"])),
+                common, bag=os.path.join(out, "usv.bag"), rviz=str(a.rviz).lower(), relay_config=relay["usv"],
+                usv_params=os.path.abspath(a.usv_params) if a.usv_params else "")),
             "auv": ms["auv"].roslaunch(os.path.join(REPO, "launch", "auv.launch"), dict(
                 common, bag=os.path.join(out, "auv.bag"), vehicle_model=a.auv_model, relay_config=relay["auv"])),
         }
