@@ -40,9 +40,9 @@ topics = [{"topic": t, "type": "sensor_msgs/PointCloud2"}
           for t in ("/bench/small", "/bench/large", "/bench/first")]
 with MasterSet(["a", "b"]) as ms:
     a, b = ms["a"], ms["b"]
-    relay(a, {"name": "a", "listen_port": port, "key": key, "peers": [{"name": "b"}],
+    relay(a, {"name": "a", "listen_port": port, "key": key, "sim": True, "peers": [{"name": "b"}],
               "topics": [dict(t, direction="out") for t in topics]})
-    b_cfg = {"name": "b", "key": key, "peers": [{"name": "a", "address": "127.0.0.1:%d" % port}],
+    b_cfg = {"name": "b", "key": key, "sim": True, "peers": [{"name": "a", "address": "127.0.0.1:%d" % port}],
              "topics": [dict(t, direction="in") for t in topics]}
     rb = relay(b, b_cfg)
     # small: the same messages to a subscriber on the publisher's master and one through the relay

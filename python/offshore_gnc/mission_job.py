@@ -25,9 +25,29 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 from offshore_gnc import report, scenario_check  # noqa: E402
 from offshore_gnc.testing import MasterSet  # noqa: E402
-from offshore_gnc.testing.masters import kill_tree  # noqa: E402
+from offshore_gnc.testing.masters import free_port, kill_tree  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
+
+
+def relay_configs(folder):
+    """config/relay/{usv,auv}.yaml with the link on a free port instead of the fixed 11411 (two missions on one
+    machine would otherwise share a link, both holding the same simulation key); returns vehicle -> file."""
+    import yaml
+    files = {}
+    port = free_port()
+    for v in ("usv", "auv"):
+        with open(os.path.join(REPO, "config", "relay", v + ".yaml")) as f:
+            c = yaml.safe_load(f)
+        if c.get("listen_port"):
+            c["listen_port"] = port
+        for p in c.get("peers", []):
+            if p.get("address"):
+                p["address"] = "%s:%d" % (p["address"].rsplit(":", 1)[0], port)
+        files[v] = os.path.join(folder, "relay-%s.yaml" % v)
+        with open(files[v], "w") as f:
+            yaml.safe_dump(c, f)
+    return files
 
 
 def parse_args(argv=None):
@@ -41,6 +61,8 @@ def parse_args(argv=None):
                     help="each simulator keeps its own clock at --rate (no shared lockstep time)")
     ap.add_argument("--max-sim-time", type=float, default=None, help="give up after this simulated time [s]")
     ap.add_argument("--auv-model", default="girona500", choices=["girona500", "acolor"])
+    ap.add_argument("--usv-params", default="", metavar="FILE",
+                    help="the simulated USV's model parameter file (config/models/ schema, e.g. from model_fit)")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
     ap.add_argument("--screenshot", action="store_true",
                     help="rviz (USV configuration) under Xvfb during the mission: rviz_usv.png in the report")
@@ -49,6 +71,8 @@ def parse_args(argv=None):
     ap.add_argument("--after-kill", type=float, default=60.0,
                     help="simulated seconds to keep watching the surviving vehicle after a stack died (default 60)")
     a = ap.parse_args(argv)
+    if a.usv_params and not os.path.isfile(a.usv_params):
+        ap.error("--usv-params: no file %s" % a.usv_params)
     if a.kill:
         v, _, t = a.kill.partition("@")
         try:
@@ -189,11 +213,13 @@ def run(a):
         lockstep = not a.free_running
         common = {"sim": "true", "scenario": os.path.abspath(a.scenario), "rate": str(a.rate), "record": "true",
                   "lockstep": str(lockstep).lower()}
+        relay = relay_configs(os.path.join(out, "logs"))  # a free link port: missions side by side never meet
         launches = {
             "usv": ms["usv"].roslaunch(os.path.join(REPO, "launch", "usv.launch"), dict(
-                common, bag=os.path.join(out, "usv.bag"), rviz=str(a.rviz).lower())),
+                common, bag=os.path.join(out, "usv.bag"), rviz=str(a.rviz).lower(), relay_config=relay["usv"],
+                usv_params=os.path.abspath(a.usv_params) if a.usv_params else "")),
             "auv": ms["auv"].roslaunch(os.path.join(REPO, "launch", "auv.launch"), dict(
-                common, bag=os.path.join(out, "auv.bag"), vehicle_model=a.auv_model)),
+                common, bag=os.path.join(out, "auv.bag"), vehicle_model=a.auv_model, relay_config=relay["auv"])),
         }
         mons = {v: Monitor(ms[v], v, lockstep) for v in ("usv", "auv")}
         clock = SharedClock(mons) if lockstep else None

@@ -4,20 +4,26 @@
 # host's root is shared read-only over virtio-9p and chrooted into, so host binaries run unchanged.
 #
 #   scripts/vm/can-vm.sh prepare             fetch + cache the kernel, modules and initramfs in .vm/ (once)
-#   scripts/vm/can-vm.sh run SCRIPT RUNDIR   boot, run `sh SCRIPT` as root in the chroot, power off.
+#   scripts/vm/can-vm.sh run SCRIPT RUNDIR [DIR...]   boot, run `sh SCRIPT` as root in the chroot, power off.
 #       RUNDIR (read-write in the guest at the same path) receives SCRIPT's files; exit status = SCRIPT's.
+#       The guest has fresh tmpfs on /tmp and /run; the checkout, SCRIPT's folder and each DIR (e.g. the catkin
+#       workspace) stay visible at their own paths wherever they are, under /tmp too.
 # Needs qemu-system-x86 busybox-static xz-utils (scripts/packages.txt) and Debian's archive for apt-get download.
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 VM="${CAN_VM_DIR:-$REPO/.vm}"
+QEMU="${CAN_VM_QEMU:-qemu-system-x86_64}"  # the emulator (tests point it at a missing file)
 MODULES="can can-raw can-dev vcan virtio_ring virtio virtio_pci_modern_dev virtio_pci_legacy_dev virtio_pci
          netfs fscache 9pnet 9pnet_virtio 9p"
 
 die() { echo "can-vm: $*" >&2; exit 1; }
 
+# The initramfs is rebuilt when /init or the module list changes (a stale cached one would run old code).
+initrd_id() { { cat "$REPO/scripts/vm/init.sh"; echo "$MODULES"; } | sha256sum | cut -c1-16; }
+
 prepare() {
-  [ -s "$VM/vmlinux" ] && [ -s "$VM/initrd.cpio.gz" ] && return 0
-  command -v qemu-system-x86_64 >/dev/null || die "qemu-system-x86_64 missing (apt-get install qemu-system-x86)"
+  command -v "$QEMU" >/dev/null || die "$QEMU not found (apt-get install qemu-system-x86, see scripts/packages.txt)"
+  [ -s "$VM/vmlinux" ] && [ -s "$VM/initrd.cpio.gz" ] && [ "$(cat "$VM/initrd.id" 2>/dev/null)" = "$(initrd_id)" ] && return 0
   [ -x /bin/busybox ] || [ -x /usr/bin/busybox ] || die "busybox missing (apt-get install busybox-static)"
   mkdir -p "$VM/dl"
   local pkg
@@ -60,21 +66,27 @@ prepare() {
   ( cd "$root" && find . | busybox cpio -o -H newc 2>/dev/null | gzip -1 ) > "$VM/initrd.cpio.gz.tmp"
   mv "$VM/vmlinux.tmp" "$VM/vmlinux"
   mv "$VM/initrd.cpio.gz.tmp" "$VM/initrd.cpio.gz"
+  initrd_id > "$VM/initrd.id"
   rm -rf "$VM/x"
 }
 
 run() {
-  local script="$1" rundir="$2"
+  local script="$1" rundir="$2" d
+  shift 2
   prepare
-  rundir="$(cd "$rundir" && pwd)"
+  rundir="$(realpath "$rundir")"
   script="$(realpath "$script")"
   rm -f "$rundir/.vm-rc"
+  # What the guest's /init reads (one path per line: no quoting, no kernel command line length limit).
+  printf '%s\n' "$script" > "$rundir/.vm-script"
+  printf '%s\n' "$rundir" > "$rundir/.vm-run"
+  for d in "$REPO" "$(dirname "$script")" "$@"; do realpath "$d"; done > "$rundir/.vm-keep"
   local rc=0
   # Commas inside qemu option values are doubled; TCG: /dev/kvm here is unusable (see the notes).
-  timeout "${CAN_VM_TIMEOUT:-240}" qemu-system-x86_64 -accel tcg -m 768 -nographic -no-reboot -nodefaults \
+  timeout "${CAN_VM_TIMEOUT:-240}" "$QEMU" -accel tcg -m 768 -nographic -no-reboot -nodefaults \
     -serial stdio -monitor none \
     -kernel "$VM/vmlinux" -initrd "$VM/initrd.cpio.gz" \
-    -append "console=ttyS0 quiet panic=-1 can_vm_script=$script can_vm_run=$rundir" \
+    -append "console=ttyS0 quiet panic=-1" \
     -fsdev "local,id=hostroot,path=/,readonly=on,security_model=none,multidevs=remap" \
     -device virtio-9p-pci,fsdev=hostroot,mount_tag=hostroot \
     -fsdev "local,id=run,path=${rundir//,/,,},security_model=none,multidevs=remap" \
@@ -89,6 +101,6 @@ run() {
 
 case "${1:-}" in
   prepare) prepare ;;
-  run) [ $# = 3 ] || die "usage: $0 run SCRIPT RUNDIR"; run "$2" "$3" ;;
-  *) sed -n '2,10p' "$0"; exit 2 ;;
+  run) [ $# -ge 3 ] || die "usage: $0 run SCRIPT RUNDIR [DIR...]"; shift; run "$@" ;;
+  *) sed -n '2,12p' "$0"; exit 2 ;;
 esac

@@ -1,5 +1,5 @@
 // libFuzzer target: arbitrary text through the candump parser and every decoder behind can_decode.
-// Built by scripts/can-fuzz.sh (clang, -fsanitize=fuzzer,address,undefined); not part of the catkin build.
+// Built by `scripts/fuzz candump` (clang, -fsanitize=fuzzer,address,undefined); not part of the catkin build.
 #include <cmath>
 #include <cstdint>
 #include <string>

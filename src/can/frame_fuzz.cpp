@@ -1,6 +1,6 @@
 // libFuzzer target: arbitrary frames (4 bytes id + flags, 1 byte length, payload) through the NMEA 2000 and
 // waterjet decoders, the bus-state monitor, the gateway policy and the waterjet emulator. Outputs must stay
-// finite and in range. Built by scripts/can-fuzz.sh.
+// finite and in range. Built by `scripts/fuzz frame`.
 #include <cmath>
 #include <cstdint>
 #include <cstring>

@@ -1,4 +1,4 @@
-// libFuzzer target for the SeaNet codec and the Micron driver; built and run by scripts/fuzz-micron (clang,
+// libFuzzer target for the SeaNet codec and the Micron driver; built and run by scripts/fuzz micron (clang,
 // ASan + UBSan).
 #include <cstddef>
 #include <cstdint>

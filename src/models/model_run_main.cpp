@@ -8,12 +8,13 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/models/cli.h"
 #include "offshore_gnc/models/auv.h"
+#include "offshore_gnc/models/csv_table.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/models/usv.h"
 
@@ -22,56 +23,11 @@ using namespace offshore_gnc::models;
 
 namespace {
 
-struct Row {
-  int line;
-  std::vector<double> v;
-};
-
 int usage(const std::string& msg) {
   std::cerr << "model_run: " << msg << "\n"
             << "usage: model_run --vehicle usv|auv --params FILE.yaml [--env FILE.yaml] [--dt S] [--every N]\n"
             << "                 [--input FILE.csv|-] [--output FILE.csv|-]\n";
   return 2;
-}
-
-// Parses numeric rows; a first line that is not numeric is a header. Returns false with a message on error.
-bool readRows(std::istream& in, std::size_t columns, std::vector<Row>& rows, std::string& err) {
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) {
-    ++n;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<double> v;
-    std::stringstream ss(line);
-    std::string cell;
-    bool numeric = true;
-    while (std::getline(ss, cell, ',')) {
-      try {
-        std::size_t used = 0;
-        v.push_back(std::stod(cell, &used));
-        if (cell.find_first_not_of(" \t", used) != std::string::npos) numeric = false;
-      } catch (const std::exception&) {
-        numeric = false;
-      }
-    }
-    if (!numeric) {
-      if (rows.empty() && n == 1) continue;  // header
-      err = "line " + std::to_string(n) + ": not a list of numbers";
-      return false;
-    }
-    if (v.size() != columns) {
-      err = "line " + std::to_string(n) + ": expected " + std::to_string(columns) + " columns, got " +
-            std::to_string(v.size());
-      return false;
-    }
-    if (!std::isfinite(v[0]) || (!rows.empty() && v[0] < rows.back().v[0])) {
-      err = "line " + std::to_string(n) + ": time must be finite and non-decreasing";
-      return false;
-    }
-    rows.push_back({n, v});
-  }
-  return true;
 }
 
 void writeState(std::ostream& out, const VehicleState& s) {
@@ -85,24 +41,19 @@ int main(int argc, char** argv) {
   std::string vehicle, params, env_file, input = "-", output = "-";
   double dt = 0.01;
   long every = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") return usage("help"), 0;
-    if (i + 1 >= argc) return usage("missing value for " + a);
-    const std::string v = argv[++i];
-    try {
-      if (a == "--vehicle") vehicle = v;
-      else if (a == "--params") params = v;
-      else if (a == "--env") env_file = v;
-      else if (a == "--input") input = v;
-      else if (a == "--output") output = v;
-      else if (a == "--dt") dt = requireRange("--dt", std::stod(v), 1e-4, 1.0);
-      else if (a == "--every") every = static_cast<long>(requireRange("--every", std::stod(v), 1, 1e6));
-      else return usage("unknown option " + a);
-    } catch (const std::exception& e) {
-      return usage(std::string("bad value for ") + a + ": " + e.what());
-    }
-  }
+  double every_n = 1;
+  const std::string err = CliOptions()
+                              .text("--vehicle", &vehicle)
+                              .text("--params", &params)
+                              .text("--env", &env_file)
+                              .text("--input", &input)
+                              .text("--output", &output)
+                              .number("--dt", &dt, 1e-4, 1.0)
+                              .number("--every", &every_n, 1, 1e6)
+                              .parse(argc, argv);
+  if (err == "help") return usage(err), 0;
+  if (!err.empty()) return usage(err);
+  every = static_cast<long>(every_n);
   if (vehicle != "usv" && vehicle != "auv") return usage("--vehicle must be usv or auv");
   if (params.empty()) return usage("--params is required");
 
@@ -118,18 +69,16 @@ int main(int argc, char** argv) {
       auv = std::make_unique<AuvModel>(loadAuvParams(params));
       columns = 1 + auv->thrusters();
     }
-    std::ifstream fin;
-    if (input != "-") {
-      fin.open(input);
-      if (!fin) throw ConfigError(input + ": cannot open the file");
-    }
-    std::vector<Row> rows;
-    std::string err;
-    if (!readRows(input == "-" ? std::cin : fin, columns, rows, err)) {
-      std::cerr << "model_run: " << input << ": " << err << "\n";
+    CsvTable rows;
+    try {
+      CsvOptions opt;
+      opt.columns = columns;
+      rows = input == "-" ? readCsvTable(std::cin, "-", opt) : readCsvFile(input, opt);
+    } catch (const ConfigError& e) {
+      std::cerr << "model_run: " << e.what() << "\n";
       return 1;
     }
-    if (rows.empty()) {
+    if (rows.rows.empty()) {
       std::cerr << "model_run: " << input << ": no command rows\n";
       return 1;
     }
@@ -145,20 +94,20 @@ int main(int argc, char** argv) {
     else out << ",tau_x,tau_y,tau_z,tau_n\n";
 
     VehicleState s0;
-    s0.t = rows.front().v[0];
+    s0.t = rows.rows.front()[0];
     if (usv) usv->reset(s0);
     else auv->reset(s0);
     long k = 0;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      const auto& v = rows[i].v;
+    for (std::size_t i = 0; i < rows.rows.size(); ++i) {
+      const auto& v = rows.rows[i];
       bool ok;
       if (usv) {
         ok = usv->setCommand({v[1], v[2], v[3]});
       } else {
         ok = auv->setCommand(Eigen::Map<const Eigen::VectorXd>(v.data() + 1, columns - 1));
       }
-      if (!ok) std::cerr << "model_run: line " << rows[i].line << ": command rejected (non-finite), previous kept\n";
-      const double t_end = i + 1 < rows.size() ? rows[i + 1].v[0] : v[0];
+      if (!ok) std::cerr << "model_run: line " << rows.lines[i] << ": command rejected (non-finite), previous kept\n";
+      const double t_end = i + 1 < rows.rows.size() ? rows.rows[i + 1][0] : v[0];
       const double now = [&] { return usv ? usv->state().t : auv->state().t; }();
       long n = std::lround((t_end - now) / dt);
       for (long j = 0; j < n; ++j) {

@@ -2,14 +2,13 @@
 // message; the params' own validate() then checks the cross-field rules (also prefixed with the file).
 #include "offshore_gnc/models/params_yaml.h"
 
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include <yaml-cpp/yaml.h>
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/models/csv_table.h"
 
 namespace offshore_gnc {
 namespace models {
@@ -93,14 +92,6 @@ YAML::Node parse(const std::string& text, const std::string& source) {
   } catch (const YAML::Exception& e) {
     throw ConfigError(source + ": not valid YAML: " + e.what());
   }
-}
-
-std::string readFile(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw ConfigError(path + ": cannot open the file");
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
 }
 
 template <class P>
@@ -259,10 +250,10 @@ EnvironmentParams environmentParamsFromYaml(const std::string& text, const std::
   return p;
 }
 
-UsvParams loadUsvParams(const std::string& path) { return usvParamsFromYaml(readFile(path), path); }
-AuvParams loadAuvParams(const std::string& path) { return auvParamsFromYaml(readFile(path), path); }
+UsvParams loadUsvParams(const std::string& path) { return usvParamsFromYaml(readTextFile(path), path); }
+AuvParams loadAuvParams(const std::string& path) { return auvParamsFromYaml(readTextFile(path), path); }
 EnvironmentParams loadEnvironmentParams(const std::string& path) {
-  return environmentParamsFromYaml(readFile(path), path);
+  return environmentParamsFromYaml(readTextFile(path), path);
 }
 
 }  // namespace models

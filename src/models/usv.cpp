@@ -176,6 +176,20 @@ void UsvModel::reset(const VehicleState& s) {
   updateOutput(Environment());
 }
 
+void UsvModel::setState(const VehicleState& s) {
+  if (!isFinite(s)) {
+    counters_.increment("rejected_states");
+    return;
+  }
+  lf_.position = {s.position.x(), s.position.y(), 0.0};
+  lf_.yaw = wrapAngle(s.yaw);
+  if (p_.type == UsvModelType::Dynamic3Dof) {
+    lf_.velocity = {s.velocity.x(), s.velocity.y(), 0.0};
+    lf_.angular_rate.z() = s.angular_rate.z();
+  }
+  updateOutput(Environment());
+}
+
 bool UsvModel::setCommand(const UsvCommand& c) {
   if (!std::isfinite(c.surge) || !std::isfinite(c.sway) || !std::isfinite(c.yaw)) {
     counters_.increment("rejected_commands");

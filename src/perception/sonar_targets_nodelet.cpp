@@ -91,10 +91,12 @@ class SonarTargetsNodelet : public nodelet::Nodelet {
     mod.setPointCloud2Fields(4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z",
                              1, sensor_msgs::PointField::FLOAT32, "intensity", 1, sensor_msgs::PointField::FLOAT32);
     mod.resize(s.detections.size());
-    sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), y(cloud, "y"), z(cloud, "z"), in(cloud, "intensity");
-    for (const auto& d : s.detections) {
-      *x = float(d.point.x()); *y = float(d.point.y()); *z = float(d.point.z()); *in = float(d.intensity);
-      ++x; ++y; ++z; ++in;
+    if (!s.detections.empty()) {  // the iterators read data.front(): undefined on an empty sweep
+      sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), y(cloud, "y"), z(cloud, "z"), in(cloud, "intensity");
+      for (const auto& d : s.detections) {
+        *x = float(d.point.x()); *y = float(d.point.y()); *z = float(d.point.z()); *in = float(d.intensity);
+        ++x; ++y; ++z; ++in;
+      }
     }
     sweep_pub_.publish(cloud);
   }

@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/relay/key.h"
 
 namespace offshore_gnc {
 namespace relay {
@@ -26,6 +27,11 @@ namespace {
 constexpr std::uint16_t kVersion = 2;  // 2: the hello carries the UDP port
 constexpr std::size_t kOutBufferLimit = 8u << 20;  // pump reliable frames only while below this
 constexpr std::size_t kNonceSize = 16;
+// Limits against a flooding peer (docs/relay.md, "Security model"): frames before an authenticated hello are
+// at most a hello's size, announced message definitions are at most 256 KiB, a peer has at most 1024 topics.
+constexpr std::size_t kMaxHelloPayload = 512;
+constexpr std::size_t kMaxDefinitionBytes = 256u << 10;
+constexpr std::size_t kMaxRemoteTopics = 1024;
 
 double nowS() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -55,6 +61,11 @@ void validate(RelayConfig& c) {
   if (c.auth && c.key.size() < 16)
     throw configError("'auth' is on but the pre-shared key is missing or shorter than 16 bytes "
                       "(set key_file, or auth: none to disable authentication explicitly)");
+  if (c.auth && !c.sim) {
+    const std::string why = deploymentKeyProblem(c.key);
+    if (!why.empty())
+      throw configError("refusing to start on hardware (sim: false): the pre-shared key " + why + ". " + kMakeKeyHint);
+  }
   requireRange("listen_port", c.listen_port, -1, 65535);
   requireRange("heartbeat_period", c.heartbeat_period, 0.01, 10.0);
   requireRange("link_timeout", c.link_timeout, 2 * c.heartbeat_period, 60.0);
@@ -111,7 +122,7 @@ struct Engine::Conn {
   std::string nonce = randomBytes(kNonceSize), remote_nonce;
   Peer* peer = nullptr;  // known after the hello
   std::uint64_t hello_ack_session = 0, hello_ack_seq = 0, remote_session = 0;
-  explicit Conn(std::size_t max_payload) : decoder(max_payload) {}
+  Conn() : decoder(kMaxHelloPayload) {}  // until the peer's hello is authenticated
 };
 
 struct Engine::Peer {
@@ -127,9 +138,14 @@ struct Engine::Peer {
   std::uint64_t rejected = 0;
   // receive side: the peer's session and the last reliable sequence delivered from it
   std::uint64_t rx_session = 0, rx_seq = 0, acked_seq = 0;
-  std::deque<std::pair<double, std::uint64_t>> pending_acks;
-  std::uint64_t latched_session = 0;  // the peer session that has our latched messages  // (delivery time, seq) not yet acknowledged
-  std::map<std::uint16_t, std::pair<long, Announce>> incoming;  // remote topic id -> (in index or -1, announce)
+  std::deque<std::pair<double, std::uint64_t>> pending_acks;  // (delivery time, seq) not yet acknowledged
+  std::uint64_t latched_session = 0;  // the peer session that has our latched messages
+  struct Incoming {
+    long index = -1;           // in-topic index once the callback accepted the announce, else -1
+    std::uint64_t digest = 0;  // of the announce (an identical repeat changes nothing)
+  };
+  std::map<std::uint16_t, Incoming> incoming;  // remote topic id -> what it maps to
+  TokenBucket log_limit{1.0, 5.0};  // refusals this peer causes are logged at most about once a second
   std::vector<TokenBucket> limits;  // per topic index
   struct Stat {
     std::uint64_t messages = 0, bytes = 0, dropped = 0, last_messages = 0, last_bytes = 0, datagrams = 0;
@@ -171,7 +187,7 @@ Engine::Engine(RelayConfig cfg, Callbacks cb, Counters& counters)
 
 Engine::~Engine() { stop(); }
 
-void Engine::start() {
+void Engine::start(bool run_thread) {
   if (cfg_.listen_port != 0) {
     listen_fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
     int one = 1;
@@ -218,8 +234,35 @@ void Engine::start() {
   }
   wake_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   running_ = true;
-  thread_ = std::thread([this] { run(); });
+  if (run_thread) thread_ = std::thread([this] { run(); });
 }
+
+void Engine::pollOnce(double max_wait_s) {
+  if (running_ && !thread_.joinable()) step(max_wait_s);
+}
+
+void Engine::adopt(int fd) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  addInbound(fd);
+}
+
+MemoryUse Engine::memoryUse() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  MemoryUse m;
+  for (const auto& c : conns_) {
+    if (c->closed) continue;
+    ++m.connections;
+    m.input_bytes += c->decoder.capacity();
+    m.output_bytes += c->out.capacity();
+  }
+  for (const auto& p : peers_) {
+    m.remote_topics += p->incoming.size();
+    m.queued_bytes += p->queue.bytes();
+  }
+  return m;
+}
+
+bool Engine::congested(const Conn& c) const { return c.out.size() - c.out_pos >= kOutBufferLimit; }
 
 void Engine::stop() {
   if (!running_.exchange(false)) return;
@@ -249,7 +292,7 @@ bool Engine::goesTo(const TopicConfig& t, const std::string& peer) const {
 }
 
 void Engine::publish(std::size_t index, const TypeInfo& info, Bytes data) {
-  if (index >= cfg_.topics.size() || !data) return;
+  if (index >= cfg_.topics.size() || !data || cfg_.topics[index].direction != "out") return;
   const TopicConfig& t = cfg_.topics[index];
   if (info.type != t.type) {
     counters_.increment("refused_type_mismatch");
@@ -421,6 +464,10 @@ void Engine::flush(Conn& c) {
   if (c.out_pos == c.out.size()) {
     c.out.clear();
     c.out_pos = 0;
+  } else if (c.out_pos > (1u << 20) && c.out_pos * 2 > c.out.size()) {
+    // a peer that never quite catches up: drop what was sent, or the buffer grows for ever
+    c.out.erase(c.out.begin(), c.out.begin() + static_cast<std::ptrdiff_t>(c.out_pos));
+    c.out_pos = 0;
   }
 }
 
@@ -480,7 +527,7 @@ void Engine::closeConn(Conn& c, const std::string& why) {
 
 void Engine::dial(Peer& p, double now) {
   p.dialing = true;
-  auto c = std::make_unique<Conn>(cfg_.max_frame_bytes);
+  auto c = std::make_unique<Conn>();
   c->fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
   c->outbound = true;
   c->peer = &p;
@@ -505,14 +552,30 @@ void Engine::dial(Peer& p, double now) {
 
 void Engine::acceptOne() {
   const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
-  if (fd < 0) return;
-  if (conns_.size() > 4 * peers_.size() + 8) {  // connection flood: memory stays bounded
-    close(fd);
-    counters_.increment("connections_refused");
-    return;
+  if (fd >= 0) addInbound(fd);
+}
+
+void Engine::addInbound(int fd) {
+  // Connection flood (half-open or never authenticated): memory stays bounded. The oldest connection without a
+  // link gives way, so that a flood delays a real peer's reconnect instead of locking it out until it ends.
+  std::size_t open = 0;
+  Conn* oldest = nullptr;
+  for (auto& c : conns_) {
+    if (c->closed) continue;
+    ++open;
+    if (!c->established && !c->outbound && (!oldest || c->opened < oldest->opened)) oldest = c.get();
+  }
+  if (open >= 4 * peers_.size() + 8) {
+    if (!oldest) {
+      close(fd);
+      counters_.increment("connections_refused");
+      return;
+    }
+    counters_.increment("connections_evicted");
+    closeConn(*oldest, "evicted by a newer connection (too many without a link)");
   }
   setNonBlocking(fd);
-  auto c = std::make_unique<Conn>(cfg_.max_frame_bytes);
+  auto c = std::make_unique<Conn>();
   c->fd = fd;
   c->opened = c->last_rx = nowS();
   c->decoder.setAuthenticator(psk_);
@@ -601,6 +664,7 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
     c.tx_auth = psk_.derive("ogr1" + c.nonce + c.remote_nonce);
     c.rx_auth = psk_.derive("ogr1" + c.remote_nonce + c.nonce);
     c.decoder.setAuthenticator(c.rx_auth);
+    c.decoder.setMaxPayload(cfg_.max_frame_bytes);
     socklen_t alen = sizeof(c.udp_to);
     if (udp_port && udp_fd_ >= 0 && getpeername(c.fd, reinterpret_cast<sockaddr*>(&c.udp_to), &alen) == 0 &&
         c.udp_to.sin_family == AF_INET) {
@@ -630,9 +694,13 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
       closeConn(c, "second hello");
       return;
     case FrameType::Ping: {
+      if (congested(c)) {  // a peer that sends but does not read gets no more replies queued
+        counters_.increment("replies_dropped");
+        return;
+      }
       FrameHeader ph;
-      ph.type = FrameType::Pong;
-      sendFrame(c, ph, f.payload.data(), f.payload.size());
+      ph.type = FrameType::Pong;  // the ping's id and time: a large ping does not make a large reply
+      sendFrame(c, ph, f.payload.data(), std::min<std::size_t>(f.payload.size(), 16));
       return;
     }
     case FrameType::Pong: {
@@ -652,7 +720,8 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
       std::string why;
       r.str(why, 4096);
       counters_.increment("refused_by_peer");
-      log(2, "peer " + p.cfg.name + " refused topic " +
+      if (p.log_limit.allow(now))
+        log(2, "peer " + p.cfg.name + " refused topic " +
                  (h.topic_id < cfg_.topics.size() ? cfg_.topics[h.topic_id].topic : std::string("?")) + ": " + why);
       return;
     }
@@ -663,7 +732,7 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
       r.str(a.topic, 1024);
       r.str(a.info.type, 1024);
       r.str(a.info.md5, 64);
-      r.str(a.info.definition);
+      r.str(a.info.definition, kMaxDefinitionBytes);
       r.u8(latched);
       r.u8(reliable);
       if (!r.ok()) {
@@ -673,6 +742,23 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
       }
       a.latched = latched;
       a.reliable = reliable;
+      // What the announce says, hashed: an identical repeat (a peer replaying its own announces) changes nothing.
+      std::uint64_t digest = 1469598103934665603ull;  // FNV-1a
+      for (const std::string* part : {&a.topic, &a.info.type, &a.info.md5, &a.info.definition})
+        for (unsigned char ch : *part + '\0') digest = (digest ^ ch) * 1099511628211ull;
+      digest = (digest ^ (latched ? 2u : 0u) ^ (reliable ? 1u : 0u)) * 1099511628211ull;
+      auto known = p.incoming.find(h.topic_id);
+      if (known != p.incoming.end() && known->second.digest == digest) {
+        counters_.increment("announces_repeated");
+        return;
+      }
+      if (known == p.incoming.end() && p.incoming.size() >= kMaxRemoteTopics) {
+        counters_.increment("announces_over_limit");
+        ++p.rejected;
+        if (p.log_limit.allow(now))
+          log(2, "peer " + p.cfg.name + " announced more than " + std::to_string(kMaxRemoteTopics) + " topics; ignored");
+        return;
+      }
       long index = -1;
       for (std::size_t i = 0; i < cfg_.topics.size(); ++i) {
         const auto& t = cfg_.topics[i];
@@ -681,15 +767,19 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
       if (index < 0) {
         counters_.increment("refused_not_configured");
         const std::string why = "topic " + a.topic + " from " + p.cfg.name + " is not configured as 'in' on " + cfg_.name;
-        log(2, why);
-        Writer w;
-        w.str(why);
-        FrameHeader rh;
-        rh.type = FrameType::Refuse;
-        rh.topic_id = h.topic_id;
-        sendFrame(c, rh, w.b.data(), w.b.size());
+        if (p.log_limit.allow(now)) log(2, why);
+        if (congested(c)) {
+          counters_.increment("replies_dropped");
+        } else {
+          Writer w;
+          w.str(why);
+          FrameHeader rh;
+          rh.type = FrameType::Refuse;
+          rh.topic_id = h.topic_id;
+          sendFrame(c, rh, w.b.data(), w.b.size());
+        }
       }
-      p.incoming[h.topic_id] = {-1, a};  // accepted only once the callback agrees
+      p.incoming[h.topic_id] = {-1, digest};  // accepted only once the callback agrees
       if (index >= 0) out.push_back({Delivery::Announce_, &p, h.topic_id, index, a, {}});
       return;
     }
@@ -769,149 +859,150 @@ void Engine::onReadable(Conn& c, double now, std::vector<Delivery>& out) {
 }
 
 void Engine::run() {
+  while (running_) step(cfg_.heartbeat_period);
+}
+
+void Engine::step(double max_wait_s) {
   std::vector<pollfd> fds;
   std::vector<Conn*> polled;
   std::vector<Delivery> deliveries;
-  while (running_) {
-    fds.clear();
-    polled.clear();
-    double timeout = cfg_.heartbeat_period;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      const double now = nowS();
-      // dial, heartbeat, timeouts
-      for (auto& pp : peers_) {
-        Peer& p = *pp;
-        if (!p.cfg.host.empty() && !p.conn && !p.dialing && now >= p.next_dial) dial(p, now);
-        if (p.conn && now >= p.next_ping) {
-          Writer w;
-          w.u64(++p.ping_id);
-          w.u64(static_cast<std::uint64_t>(now * 1e9));
-          FrameHeader h;
-          h.type = FrameType::Ping;
-          sendFrame(*p.conn, h, w.b.data(), w.b.size());
-          p.monitor.pingSent(p.ping_id);
-          p.next_ping = now + cfg_.heartbeat_period;
-          flush(*p.conn);
-        }
+  double timeout = cfg_.heartbeat_period;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const double now = nowS();
+    // dial, heartbeat, timeouts
+    for (auto& pp : peers_) {
+      Peer& p = *pp;
+      if (!p.cfg.host.empty() && !p.conn && !p.dialing && now >= p.next_dial) dial(p, now);
+      if (p.conn && now >= p.next_ping && !congested(*p.conn)) {  // (a peer that does not read gets no more)
+        Writer w;
+        w.u64(++p.ping_id);
+        w.u64(static_cast<std::uint64_t>(now * 1e9));
+        FrameHeader h;
+        h.type = FrameType::Ping;
+        sendFrame(*p.conn, h, w.b.data(), w.b.size());
+        p.monitor.pingSent(p.ping_id);
+        p.next_ping = now + cfg_.heartbeat_period;
+        flush(*p.conn);
       }
-      for (auto& c : conns_) {
-        if (c->closed) continue;
-        const double limit = c->established ? cfg_.link_timeout : 2 * cfg_.link_timeout;
-        if (now - c->last_rx > limit) closeConn(*c, c->established ? "heartbeat timeout" : "handshake timeout");
-      }
-      conns_.erase(std::remove_if(conns_.begin(), conns_.end(), [](const auto& c) { return c->closed; }),
-                   conns_.end());
-      fds.push_back({wake_fd_, POLLIN, 0});
+    }
+    for (auto& c : conns_) {
+      if (c->closed) continue;
+      const double limit = c->established ? cfg_.link_timeout : 2 * cfg_.link_timeout;
+      if (now - c->last_rx > limit) closeConn(*c, c->established ? "heartbeat timeout" : "handshake timeout");
+    }
+    conns_.erase(std::remove_if(conns_.begin(), conns_.end(), [](const auto& c) { return c->closed; }),
+                 conns_.end());
+    fds.push_back({wake_fd_, POLLIN, 0});
+    polled.push_back(nullptr);
+    if (listen_fd_ >= 0) {
+      fds.push_back({listen_fd_, POLLIN, 0});
       polled.push_back(nullptr);
-      if (listen_fd_ >= 0) {
-        fds.push_back({listen_fd_, POLLIN, 0});
-        polled.push_back(nullptr);
-      }
-      for (auto& c : conns_) {
-        short ev = c->connecting ? POLLOUT : POLLIN;
-        if (c->out_pos < c->out.size()) ev |= POLLOUT;
-        fds.push_back({c->fd, ev, 0});
-        polled.push_back(c.get());
-      }
-      // last: a datagram and the TCP announce of its topic from the same poll round are handled announce first
-      if (udp_fd_ >= 0) {
-        fds.push_back({udp_fd_, POLLIN, 0});
-        polled.push_back(nullptr);
-      }
-      for (auto& p : peers_) {
-        if (!p->pending_acks.empty()) timeout = std::min(timeout, std::max(0.0, cfg_.ack_delay / 2));
-        if (!p->cfg.host.empty() && !p->conn && !p->dialing) timeout = std::min(timeout, std::max(0.0, p->next_dial - now));
+    }
+    for (auto& c : conns_) {
+      short ev = c->connecting ? POLLOUT : POLLIN;
+      if (c->out_pos < c->out.size()) ev |= POLLOUT;
+      fds.push_back({c->fd, ev, 0});
+      polled.push_back(c.get());
+    }
+    // last: a datagram and the TCP announce of its topic from the same poll round are handled announce first
+    if (udp_fd_ >= 0) {
+      fds.push_back({udp_fd_, POLLIN, 0});
+      polled.push_back(nullptr);
+    }
+    for (auto& p : peers_) {
+      if (!p->pending_acks.empty()) timeout = std::min(timeout, std::max(0.0, cfg_.ack_delay / 2));
+      if (!p->cfg.host.empty() && !p->conn && !p->dialing) timeout = std::min(timeout, std::max(0.0, p->next_dial - now));
+    }
+  }
+  poll(fds.data(), fds.size(), max_wait_s <= 0 ? 0 : static_cast<int>(std::min(timeout, max_wait_s) * 1000) + 1);
+  if (!running_) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const double now = nowS();
+    std::size_t i = 0;
+    if (fds[i].revents & POLLIN) {
+      std::uint64_t v;
+      if (read(wake_fd_, &v, sizeof(v)) < 0) {
       }
     }
-    poll(fds.data(), fds.size(), static_cast<int>(timeout * 1000) + 1);
-    if (!running_) break;
-    deliveries.clear();
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      const double now = nowS();
-      std::size_t i = 0;
-      if (fds[i].revents & POLLIN) {
-        std::uint64_t v;
-        if (read(wake_fd_, &v, sizeof(v)) < 0) {
-        }
-      }
+    ++i;
+    if (listen_fd_ >= 0) {
+      if (fds[i].revents & POLLIN) acceptOne();
       ++i;
-      if (listen_fd_ >= 0) {
-        if (fds[i].revents & POLLIN) acceptOne();
-        ++i;
-      }
-      const std::size_t n_conn_fds = fds.size() - (udp_fd_ >= 0 ? 1 : 0);
-      for (; i < n_conn_fds; ++i) {
-        Conn& c = *polled[i];
-        if (c.closed || !fds[i].revents) continue;
-        if (c.connecting) {
-          int err = 0;
-          socklen_t len = sizeof(err);
-          getsockopt(c.fd, SOL_SOCKET, SO_ERROR, &err, &len);
-          if (err) {
-            closeConn(c, std::strerror(err));
-            continue;
-          }
-          c.connecting = false;
-        }
-        if (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) onReadable(c, now, deliveries);
-        if (!c.closed) flush(c);
-      }
-      if (udp_fd_ >= 0 && (fds.back().revents & POLLIN)) onDatagrams(deliveries);
     }
-    if (deliveries.empty()) {
-      sendAcks(nowS());
-      continue;
-    }
-    // Callbacks run without the lock: the ROS side may take time (advertising, waiting for subscribers).
-    std::vector<std::pair<Delivery*, std::string>> decisions;
-    for (auto& d : deliveries) {
-      if (d.kind == Delivery::Announce_) {
-        std::string why = cb_.on_announce ? cb_.on_announce(std::size_t(d.index), d.peer->cfg.name, d.announce) : "";
-        decisions.emplace_back(&d, why);
-        std::lock_guard<std::mutex> lock(mutex_);
-        auto it = d.peer->incoming.find(d.remote_id);
-        if (it != d.peer->incoming.end()) it->second.first = why.empty() ? d.index : -1;
-        if (!why.empty()) {
-          counters_.increment("refused_type_mismatch");
-          log(2, why);
-          if (d.peer->conn) {
-            Writer w;
-            w.str(why);
-            FrameHeader rh;
-            rh.type = FrameType::Refuse;
-            rh.topic_id = d.remote_id;
-            sendFrame(*d.peer->conn, rh, w.b.data(), w.b.size());
-          }
-        }
-        continue;
-      }
-      long index = -1;
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        auto it = d.peer->incoming.find(d.remote_id);
-        if (it != d.peer->incoming.end()) index = it->second.first;
-        if (index >= 0) {
-          auto& st = d.peer->in_stats[std::size_t(index)];
-          st.used = true;
-          if (!d.peer->limits[std::size_t(index)].allow(nowS())) {
-            ++st.dropped;
-            counters_.increment("rate_limited");
-            continue;
-          }
-          ++st.messages;
-          if (d.datagram) ++st.datagrams;
-          st.bytes += d.data.size();
-        } else {
-          counters_.increment("refused_messages_dropped");
+    const std::size_t n_conn_fds = fds.size() - (udp_fd_ >= 0 ? 1 : 0);
+    for (; i < n_conn_fds; ++i) {
+      Conn& c = *polled[i];
+      if (c.closed || !fds[i].revents) continue;
+      if (c.connecting) {
+        int err = 0;
+        socklen_t len = sizeof(err);
+        getsockopt(c.fd, SOL_SOCKET, SO_ERROR, &err, &len);
+        if (err) {
+          closeConn(c, std::strerror(err));
           continue;
         }
+        c.connecting = false;
       }
-      if (cb_.on_message) cb_.on_message(std::size_t(index), d.peer->cfg.name, d.data);
+      if (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) onReadable(c, now, deliveries);
+      if (!c.closed) flush(c);
     }
-    sendAcks(nowS());
+    if (udp_fd_ >= 0 && (fds.back().revents & POLLIN)) onDatagrams(deliveries);
   }
+  if (deliveries.empty()) {
+    sendAcks(nowS());
+    return;
+  }
+  // Callbacks run without the lock: the ROS side may take time (advertising, waiting for subscribers).
+  std::vector<std::pair<Delivery*, std::string>> decisions;
+  for (auto& d : deliveries) {
+    if (d.kind == Delivery::Announce_) {
+      std::string why = cb_.on_announce ? cb_.on_announce(std::size_t(d.index), d.peer->cfg.name, d.announce) : "";
+      decisions.emplace_back(&d, why);
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto it = d.peer->incoming.find(d.remote_id);
+      if (it != d.peer->incoming.end()) it->second.index = why.empty() ? d.index : -1;
+      if (!why.empty()) {
+        counters_.increment("refused_type_mismatch");
+        if (d.peer->log_limit.allow(nowS())) log(2, why);
+        if (d.peer->conn && congested(*d.peer->conn)) {
+          counters_.increment("replies_dropped");
+        } else if (d.peer->conn) {
+          Writer w;
+          w.str(why);
+          FrameHeader rh;
+          rh.type = FrameType::Refuse;
+          rh.topic_id = d.remote_id;
+          sendFrame(*d.peer->conn, rh, w.b.data(), w.b.size());
+        }
+      }
+      continue;
+    }
+    long index = -1;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto it = d.peer->incoming.find(d.remote_id);
+      if (it != d.peer->incoming.end()) index = it->second.index;
+      if (index >= 0) {
+        auto& st = d.peer->in_stats[std::size_t(index)];
+        st.used = true;
+        if (!d.peer->limits[std::size_t(index)].allow(nowS())) {
+          ++st.dropped;
+          counters_.increment("rate_limited");
+          continue;
+        }
+        ++st.messages;
+        if (d.datagram) ++st.datagrams;
+        st.bytes += d.data.size();
+      } else {
+        counters_.increment("refused_messages_dropped");
+        continue;
+      }
+    }
+    if (cb_.on_message) cb_.on_message(std::size_t(index), d.peer->cfg.name, d.data);
+  }
+  sendAcks(nowS());
 }
 
 void Engine::sendAcks(double now) {
@@ -926,7 +1017,7 @@ void Engine::sendAcks(double now) {
       ack = p->pending_acks.front().second;
       p->pending_acks.pop_front();
     }
-    if (ack && p->conn && ack != p->acked_seq) {
+    if (ack && p->conn && ack != p->acked_seq && !congested(*p->conn)) {
       FrameHeader h;
       h.type = FrameType::Ack;
       h.seq = ack;

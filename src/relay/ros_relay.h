@@ -7,7 +7,6 @@
 #include <ros/ros.h>
 #include <topic_tools/shape_shifter.h>
 
-#include <fstream>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -15,6 +14,7 @@
 
 #include "offshore_gnc/LinkStatus.h"
 #include "offshore_gnc/relay/engine.h"
+#include "offshore_gnc/relay/key.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 
@@ -71,11 +71,8 @@ inline relay::RelayConfig loadConfig(const ros::NodeHandle& pnh) {
   c.auth = p.choice("auth", "hmac-sha256", {"hmac-sha256", "none"}) == "hmac-sha256";
   c.key = p.text("key", "");
   const std::string key_file = p.text("key_file", "");
-  if (c.auth && c.key.empty() && !key_file.empty()) {
-    std::ifstream f(key_file);
-    if (!f) throw ConfigError("relay config: cannot read key_file '" + key_file + "'");
-    std::getline(f, c.key);
-  }
+  if (c.auth && c.key.empty() && !key_file.empty()) c.key = relay::readKeyFile(key_file);
+  c.sim = p.flag("sim", false);
   c.heartbeat_period = p.number("heartbeat_period", 0.2, 0.01, 10.0);
   c.link_timeout = p.number("link_timeout", 1.0, 0.02, 60.0);
   c.ack_delay = p.number("ack_delay", 0.5, 0.0, 10.0);
@@ -184,6 +181,8 @@ class RelayRos {
       else
         ROS_INFO("%s", s.c_str());
     };
+    if (cfg.auth) key_fingerprint_ = relay::keyFingerprint(cfg.key);
+    if (!cfg.auth && !cfg.sim) ROS_WARN("relay '%s': authentication is off (auth: none) on hardware", cfg.name.c_str());
     engine_ = std::make_unique<relay::Engine>(cfg, cb, counters_);
     for (std::size_t i = 0; i < cfg.topics.size(); ++i) {
       const auto& t = cfg.topics[i];
@@ -204,7 +203,10 @@ class RelayRos {
         s.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(last_status_.size() - up) + " link(s) down");
       ros_util::addCounters(s, counters_, {"frames_bad_auth", "frames_malformed", "frames_oversized", "frames_replayed",
                                            "unknown_topic", "queue_overflow", "refused_type_mismatch", "udp_datagrams",
-                                           "udp_lost", "udp_malformed", "udp_unknown_source"});
+                                           "udp_lost", "udp_malformed", "udp_unknown_source", "connections_refused",
+                                           "connections_evicted", "announces_over_limit", "announces_repeated",
+                                           "replies_dropped"});
+      if (!key_fingerprint_.empty()) s.add("key", key_fingerprint_);
     });
     try {
       engine_->start();
@@ -319,6 +321,7 @@ class RelayRos {
   std::vector<relay::PeerStatus> last_status_;
   std::mutex log_mutex_;
   std::map<std::string, ros::WallTime> last_logged_;
+  std::string key_fingerprint_;  // diagnostics: both ends show the same one when their keys match
   ros::WallTimer timer_;
 };
 

@@ -6,3 +6,4 @@ target_include_directories(offshore_gnc_sim SYSTEM PUBLIC ${OpenCV_INCLUDE_DIRS}
 target_link_libraries(offshore_gnc_sim PUBLIC yaml-cpp opencv_core opencv_imgproc opencv_imgcodecs)
 offshore_gnc_tool(sim_bench SOURCES src/sim/sim_bench.cpp)
 offshore_gnc_tool(scenario_check SOURCES src/sim/scenario_check_main.cpp)
+offshore_gnc_tool(sim_log SOURCES src/sim/sim_log_main.cpp)

@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -28,6 +29,7 @@ class Reader {
   void keys(const YAML::Node& n, const std::string& path, const std::set<std::string>& allowed) const {
     if (!n.IsMap()) fail(path, "must be a mapping");
     for (const auto& kv : n) {
+      if (!kv.first.IsScalar()) fail(path, "has a key that is not text");
       const std::string k = kv.first.as<std::string>();
       if (!allowed.count(k)) fail(path.empty() ? k : path + "." + k, "is not a known key (typo?)");
     }
@@ -35,6 +37,7 @@ class Reader {
   double number(const YAML::Node& n, const std::string& path, const std::string& key, double lo, double hi,
                 const double* def = nullptr) const {
     const std::string full = path.empty() ? key : path + "." + key;
+    if (!n.IsMap()) fail(path, "must be a mapping");
     const YAML::Node v = n[key];
     if (!v) {
       if (def) return *def;
@@ -57,6 +60,7 @@ class Reader {
     return number(n, path, key, lo, hi, &def);
   }
   std::string text(const YAML::Node& n, const std::string& path, const std::string& key) const {
+    if (!n.IsMap()) fail(path, "must be a mapping");
     const YAML::Node v = n[key];
     if (!v || !v.IsScalar()) fail(path.empty() ? key : path + "." + key, "is missing or not text");
     return v.as<std::string>();
@@ -69,7 +73,8 @@ class Reader {
 std::string idx(const std::string& list, std::size_t i) { return list + "[" + std::to_string(i) + "]"; }
 }  // namespace
 
-Scenario parseScenario(const std::string& yaml_text, const std::string& base_dir, const std::string& source) {
+namespace {
+Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir, const std::string& source) {
   Reader r(source);
   YAML::Node root;
   try {
@@ -194,7 +199,9 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& base_dir
     r.keys(m, "map", {"image", "resolution", "north", "east", "threshold"});
     std::string img = r.text(m, "map", "image");
     if (!img.empty() && img[0] != '/') img = base_dir + "/" + img;
-    if (!std::ifstream(img).good()) r.fail("map.image", "= '" + img + "' cannot be read");
+    std::error_code ec;  // a directory or a device (/dev/stdin) is no image, and reading one may block
+    if (!std::filesystem::is_regular_file(img, ec) || !std::ifstream(img).good())
+      r.fail("map.image", "= '" + img + "' cannot be read (not a readable file)");
     s.map_image = img;
     const double res = r.number(m, "map", "resolution", 0.01, 100.0);
     const double n0 = r.number(m, "map", "north", -kMaxCoord, kMaxCoord);
@@ -224,6 +231,15 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& base_dir
     if (!s.map.empty() && s.map.occupied(s.world.targets[i].position.head<2>()))
       r.fail(idx("targets", i), "lies on land");
   return s;
+}
+}  // namespace
+
+Scenario parseScenario(const std::string& yaml_text, const std::string& base_dir, const std::string& source) {
+  try {
+    return parseChecked(yaml_text, base_dir, source);
+  } catch (const YAML::Exception& e) {  // a shape the checks above did not foresee: still the user's file
+    throw ConfigError("scenario '" + source + "': " + e.what());
+  }
 }
 
 Scenario loadScenario(const std::string& path) {

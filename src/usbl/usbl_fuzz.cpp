@@ -1,4 +1,4 @@
-// libFuzzer target for the SeaTrac codec; built and run by scripts/fuzz-usbl (clang, ASan + UBSan).
+// libFuzzer target for the SeaTrac codec; built and run by `scripts/fuzz usbl` (clang, ASan + UBSan).
 #include <cstddef>
 #include <cstdint>
 

@@ -4,6 +4,7 @@ Run as a script (`python3 test_relay_multimaster.py probe ...`) the file is also
 against one master: a counting publisher or a recording subscriber.
 """
 import os
+import re
 import signal
 import socket
 import subprocess
@@ -58,7 +59,7 @@ def start_relay(master, cfg, name="relay", nodelet=False):
 
 def cfg(name, peers, topics, listen_port=0, key=KEY, **extra):
     c = {"name": name, "listen_port": listen_port, "peers": peers, "topics": topics,
-         "heartbeat_period": 0.1, "link_timeout": 0.6, "backoff_max": 0.5}
+         "heartbeat_period": 0.1, "link_timeout": 0.6, "backoff_max": 0.5, "sim": True}
     if key:
         c["key"] = key
     else:
@@ -95,7 +96,7 @@ def log_text(master, name):
         return ""
 
 
-def link_status(master, timeout=10):
+def link_status(master, timeout=30):  # generous: under the sanitizers a rostopic start alone takes seconds
     return master.wait_for_message("/relay/link_status", timeout=timeout)
 
 
@@ -112,6 +113,7 @@ def test_shipped_configs_carry_the_thesis_topics_latched_target():
             with open(os.path.join(REPO, "config", "relay", vehicle + ".yaml")) as f:
                 c = yaml.safe_load(f)
             c["key_file"] = key_file
+            c["sim"] = True  # KEY is no deployment key
             if vehicle == "usv":
                 c["listen_port"] = port
             else:
@@ -256,15 +258,37 @@ def test_four_masters_several_peers():
 
 
 def _rss_kb(pid):
-    for pid_ in [pid] + [int(p) for p in os.popen("pgrep -P %d" % pid).read().split()]:
+    """Resident memory of the relay process (relay_node, exec'd by rosrun, or a nodelet child)."""
+    children = []  # from /proc, not pgrep: under the sanitizer run's LD_PRELOAD, procps tools can hang
+    for d in os.listdir("/proc"):
         try:
+            if d.isdigit() and int(open("/proc/%s/stat" % d).read().rsplit(")", 1)[1].split()[1]) == pid:
+                children.append(int(d))
+        except (FileNotFoundError, ProcessLookupError, IndexError, ValueError):
+            pass
+    for pid_ in [pid] + children:
+        try:
+            cmdline = open("/proc/%d/cmdline" % pid_).read()
+            if "relay_node" not in cmdline and "nodelet" not in cmdline:
+                continue
             with open("/proc/%d/status" % pid_) as f:
                 for line in f:
-                    if line.startswith("VmRSS") and "nodelet" in open("/proc/%d/cmdline" % pid_).read():
+                    if line.startswith("VmRSS"):
                         return int(line.split()[1])
         except FileNotFoundError:
             pass
-    return 0
+    raise AssertionError("no relay process under pid %d" % pid)
+
+
+def diagnostics_counters(master, timeout=10):
+    """The relay's counters from /diagnostics (key -> int)."""
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        rc, out = master.call(["rostopic", "echo", "-n", "1", "/diagnostics"], timeout=timeout)
+        for st in (yaml.safe_load(out.split("\n---")[0]) or {}).get("status", []):
+            if st["name"].endswith("link"):
+                return {v["key"]: int(v["value"]) for v in st["values"] if v["value"].isdigit()}
+    raise AssertionError("no relay diagnostics on " + master.name)
 
 
 def test_bad_frames_and_floods_are_dropped_counted_bounded():
@@ -280,7 +304,9 @@ def test_bad_frames_and_floods_are_dropped_counted_bounded():
                              [{"topic": "/count", "type": "std_msgs/String", "direction": "out"}]))
         assert wait_until(lambda: link_status(usv)["up"], 15)
         rss0 = _rss_kb(relay.pid)
-        # garbage, an oversized length field, and a 64 MB flood of random bytes over many connections
+        # half-open connections that never say anything (held open), then garbage, an oversized length field,
+        # and a 64 MB flood of random bytes over many connections
+        half_open = [socket.create_connection(("127.0.0.1", port)) for _ in range(40)]
         blob = os.urandom(1 << 20)
         for i in range(64):
             with socket.create_connection(("127.0.0.1", port)) as s:
@@ -295,9 +321,68 @@ def test_bad_frames_and_floods_are_dropped_counted_bounded():
         assert wait_until(lambda: len(read_lines(out)) >= 50, 20), len(read_lines(out))
         assert relay.poll() is None  # still running
         rss1 = _rss_kb(relay.pid)
-        assert rss1 - rss0 < 80 * 1024, (rss0, rss1)
+        assert rss0 > 0 and rss1 - rss0 < 80 * 1024, (rss0, rss1)
         log = log_text(usv, "relay")
         assert "oversized" in log or "bad magic" in log
+        counters = diagnostics_counters(usv)
+        assert counters.get("connections_evicted", 0) >= 40 - 12, counters  # the cap: 4 per peer + 8
+        assert counters.get("frames_oversized", 0) >= 1 and counters.get("frames_malformed", 0) >= 1, counters
+        for s_ in half_open:
+            s_.close()
+
+
+def _relay_key(path):
+    """A deployment key made with the documented command; returns its fingerprint."""
+    r = subprocess.run([os.path.join(REPO, "scripts", "relay-key"), path], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, timeout=30)
+    assert r.returncode == 0, r.stdout
+    assert oct(os.stat(path).st_mode & 0o777) == "0o600"
+    return r.stdout.decode().split("(")[-1].rstrip(")\n")
+
+
+def test_hardware_launch_with_the_simulation_key_stops_and_says_how_to_make_one():
+    """roslaunch offshore_gnc usv.launch sim:=false with the default key: nothing starts, the message names the
+    published simulation key and the command that makes a deployment key; with such a key the check passes."""
+    with MasterSet(["usv"]) as ms:
+        usv = ms["usv"]
+        launch = usv.roslaunch(os.path.join(REPO, "launch", "usv.launch"), {"sim": "false"}, name="usv_hw")
+        assert launch.wait(60) != 0
+        out = log_text(usv, "usv_hw")
+        assert "simulation key" in out and "scripts/relay-key FILE" in out, out
+        rc, nodes = usv.call(["rosnode", "list"])
+        assert "/relay" not in nodes and "/usv_manager" not in nodes, nodes
+        for vehicle in ("usv", "auv"):  # the AUV's launch file includes the same check
+            rc, out = usv.call(["roslaunch", "--dump-params", os.path.join(REPO, "launch", vehicle + ".launch"),
+                                "sim:=false"], timeout=60)
+            assert "simulation key" in out and "key_fingerprint:" not in out, out  # (--dump-params exits 0)
+        key = os.path.join(usv.log_dir, "deploy.key")
+        fingerprint = _relay_key(key)
+        rc, out = usv.call(["roslaunch", "--dump-params", os.path.join(REPO, "launch", "usv.launch"), "sim:=false",
+                            "key_file:=" + key], timeout=60)
+        assert re.search(r"key_fingerprint: '?%s" % fingerprint, out) and fingerprint.startswith("sha256:"), out
+
+
+def test_relay_on_hardware_refuses_weak_keys_and_links_with_a_deployment_key():
+    port = free_port()
+    with MasterSet(["usv", "auv"]) as ms:
+        usv, auv = ms["usv"], ms["auv"]
+        in_cfg = cfg("usv", [{"name": "auv"}], [{"topic": "/chat", "type": "std_msgs/String", "direction": "in"}],
+                     listen_port=port, sim=False)  # KEY: 25 bytes of text, no deployment key
+        weak = start_relay(usv, in_cfg, name="weak")
+        assert weak.wait(20) == 1
+        assert "refusing to start on hardware" in log_text(usv, "weak") and "relay-key" in log_text(usv, "weak")
+        key = os.path.join(usv.log_dir, "deploy.key")
+        _relay_key(key)
+        out_cfg = cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
+                      [{"topic": "/chat", "type": "std_msgs/String", "direction": "out", "latched": True}], sim=False)
+        for c in (in_cfg, out_cfg):
+            del c["key"]
+            c["key_file"] = key
+        start_relay(usv, in_cfg)
+        start_relay(auv, out_cfg)
+        auv.publish("/chat", "std_msgs/String", {"data": "on hardware"})
+        assert usv.wait_for_message("/chat", timeout=15)["data"] == "on hardware"
+        assert link_status(usv)["up"]
 
 
 if __name__ == "__main__" and len(sys.argv) > 2 and sys.argv[1] == "probe":

@@ -2,10 +2,12 @@
 # SocketCAN tests on a real vcan0: the driver, gateway and emulator gtests (test/unit/can/vcan/) with
 # candump/cansend, injected error frames, watchdog timing and manual override, then can_decode over the
 # candump log of that run. Directly when this host has vcan; otherwise in a throwaway qemu VM
-# (scripts/vm/can-vm.sh). When neither works the result is a loud "skipped: no SocketCAN", never a pass.
+# (scripts/vm/can-vm.sh), wherever the checkout is (under /tmp too). When neither works the suite FAILS naming
+# the cause (qemu missing, kernel download failed, ...); only OFFSHORE_GNC_ALLOW_SKIP=1 makes that a skip.
 # Also the CanGateway + CanEmulator nodelets end to end (test/unit/can/vcan/e2e.test): always with a native
 # vcan, in the VM only with CAN_E2E=1 (about 150 s under software emulation).
-# Env: TEST_RESULTS_DIR (JUnit XML out), WS (catkin workspace with the built test_can_vcan, can_decode).
+# Env: TEST_RESULTS_DIR (JUnit XML out), WS (catkin workspace with the built test_can_vcan, can_decode),
+# CAN_VCAN_MODE=vm (the VM even where the host has vcan), CAN_VM_QEMU (the emulator; tests point it nowhere).
 set -uo pipefail
 source "$(dirname "$0")/lib/junit.sh"
 suite_env can-vcan
@@ -17,6 +19,12 @@ rm -rf "$run" && mkdir -p "$run"
 xml_case() {  # xml_case NAME (pass|fail|skip) MESSAGE FILE: a one-case suite of its own
   junit_case can_vcan "$1" "$2" "$3"
   junit_write "can_vcan_$1" "$4" || true
+}
+cannot_run() {  # cannot_run REASON: no SocketCAN here; fails unless the documented opt-out is set
+  junit_cannot_run can_vcan socketcan "no SocketCAN: $1"
+  junit_write can_vcan_socketcan "$out/can_vcan.xml" || true
+  [ "${OFFSHORE_GNC_ALLOW_SKIP:-0}" = 1 ]
+  exit
 }
 
 if [ ! -x "$bin/test_can_vcan" ] || [ ! -x "$bin/can_decode" ]; then
@@ -52,25 +60,23 @@ have_vcan() {
 
 t0=$(date +%s)
 mode=""
-if have_vcan; then
+if [ "${CAN_VCAN_MODE:-auto}" != vm ] && have_vcan; then
   mode="host"
   CAN_E2E="${CAN_E2E:-1}" sh "$run/guest.sh"; rc=$?
 else
   mode="vm"
   if ! "$REPO/scripts/vm/can-vm.sh" prepare > "$run/prepare.log" 2>&1; then
-    echo "!!! skipped: no SocketCAN (host kernel has none and the VM cannot be prepared: $(tail -n1 "$run/prepare.log"))" >&2
-    xml_case socketcan skip "skipped: no SocketCAN: $(tail -n1 "$run/prepare.log")" "$out/can_vcan.xml"; exit 0
+    cannot_run "the host kernel has none and the VM cannot be prepared: $(tail -n1 "$run/prepare.log")"
   fi
   [ "${CAN_E2E:-0}" = 1 ] && sed -i '1i export CAN_E2E=1' "$run/guest.sh"
   # Software emulation on a shared host schedules threads late now and then: wider timing tolerance.
   sed -i "1i export CAN_TIMING_SLACK=${CAN_TIMING_SLACK:-0.1}" "$run/guest.sh"
-  "$REPO/scripts/vm/can-vm.sh" run "$run/guest.sh" "$run" > "$run/vm.log" 2>&1; rc=$?
+  "$REPO/scripts/vm/can-vm.sh" run "$run/guest.sh" "$run" "$WS" > "$run/vm.log" 2>&1; rc=$?
   if [ $rc = 125 ]; then
     if grep -q "gtest" "$run/vm.log" || [ -s "$run/gtest_can_vcan.xml" ]; then
       xml_case vm fail "the VM stopped before the tests finished (see $run/vm.log)" "$out/can_vcan.xml"; exit 1
     fi
-    echo "!!! skipped: no SocketCAN (the VM did not start: $(tail -n2 "$run/vm.log" | tr '\n' ' '))" >&2
-    xml_case socketcan skip "skipped: no SocketCAN: the VM did not start ($(tail -n1 "$run/vm.log"))" "$out/can_vcan.xml"; exit 0
+    cannot_run "the VM did not finish: $(grep -E "^(init|can-vm):" "$run/vm.log" | tail -n3 | tr '\n' ' ') (log: $run/vm.log)"
   fi
 fi
 echo "can_vcan: ran on $mode in $(( $(date +%s) - t0 )) s" >&2

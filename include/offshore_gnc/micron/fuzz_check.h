@@ -1,6 +1,6 @@
 #pragma once
 // The SeaNet codec's and the driver's invariants on arbitrary input: shared by the libFuzzer target
-// (scripts/fuzz-micron) and the gtest that runs the same entry point over random and mutated streams.
+// (scripts/fuzz micron) and the gtest that runs the same entry point over random and mutated streams.
 #include <cstddef>
 #include <cstdint>
 

@@ -99,6 +99,10 @@ class UsvModel {
   // Low-frequency state (wave motion removed), jets at idle with bucket and nozzle neutral, and the command
   // reset to neutral. Velocities are kept (initial speed allowed) and the engine chain is at equilibrium.
   void reset(const VehicleState& s);
+  // Overwrites the low-frequency position, yaw and (3-DOF model) velocities, keeping time, command and the
+  // waterjet chain: restarts a run from a measured state in mid-log (model identification). The Nomoto model's
+  // velocities are its transfer functions' outputs and are kept. Non-finite: counted ("rejected_states").
+  void setState(const VehicleState& s);
   // Accepts a command for the next steps. NaN/inf: rejected, counted ("rejected_commands"), previous kept.
   // Outside [-1, 1]: clamped and counted ("clamped_commands").
   bool setCommand(const UsvCommand& c);

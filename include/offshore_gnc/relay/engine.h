@@ -48,6 +48,9 @@ struct RelayConfig {
   bool udp = true;
   std::size_t max_datagram_bytes = 60000;
   std::string key;      // pre-shared key (required when auth)
+  // Simulation: any key of >= 16 bytes, the shipped config/relay/sim.key too. Off (hardware), the key must be a
+  // deployment key (relay/key.h: >= 32 random bytes, not the published simulation key).
+  bool sim = false;
   double heartbeat_period = 0.2, link_timeout = 1.0, backoff_min = 0.1, backoff_max = 2.0;
   double ack_delay = 0.5;  // acks trail delivery to ROS by this long (crash window covered by resends)
   std::size_t queue_messages = 1000, queue_bytes = 64u << 20, max_frame_bytes = 32u << 20;
@@ -84,6 +87,15 @@ struct PeerStatus {
   std::vector<TopicStatus> topics;
 };
 
+// What the engine holds in memory, for tests of its limits (docs/relay.md, "Security model").
+struct MemoryUse {
+  std::size_t connections = 0;  // open TCP connections, authenticated or not
+  std::size_t input_bytes = 0;  // frame decoders' buffers (capacity)
+  std::size_t output_bytes = 0; // unsent output (capacity)
+  std::size_t remote_topics = 0;  // announced topics remembered, all peers
+  std::size_t queued_bytes = 0;   // reliable queues
+};
+
 struct Callbacks {
   // An announced topic from `peer` matched in-topic `index`: return "" to accept, or the refusal reason.
   std::function<std::string(std::size_t index, const std::string& peer, const Announce&)> on_announce;
@@ -99,8 +111,14 @@ class Engine {
   ~Engine();
   Engine(const Engine&) = delete;
   Engine& operator=(const Engine&) = delete;
-  void start();
+  // Starts the I/O thread; with run_thread false the caller drives the engine with pollOnce (tests, fuzzing).
+  void start(bool run_thread = true);
   void stop();
+  // One round of the I/O loop: dial, heartbeats, poll (at most max_wait_s), read, deliver, ack.
+  void pollOnce(double max_wait_s);
+  // Takes a connected stream socket (e.g. one end of a socketpair) as if a peer had dialled in.
+  void adopt(int fd);
+  MemoryUse memoryUse();
   // A local message on out-topic `index`; the type is checked against the configuration.
   void publish(std::size_t index, const TypeInfo& info, Bytes data);
   std::vector<PeerStatus> status();
@@ -112,7 +130,10 @@ class Engine {
   struct Peer;
   struct Delivery;
   void run();
+  void step(double max_wait_s);
   void acceptOne();
+  void addInbound(int fd);
+  bool congested(const Conn& c) const;
   void dial(Peer& p, double now);
   void closeConn(Conn& c, const std::string& why);
   void onReadable(Conn& c, double now, std::vector<Delivery>& out);

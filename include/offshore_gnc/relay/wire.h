@@ -59,12 +59,15 @@ class FrameDecoder {
  public:
   explicit FrameDecoder(std::size_t max_payload) : max_payload_(max_payload) {}
   void setAuthenticator(const Authenticator& a) { auth_ = a; }
+  // Larger frames than this are Oversized (e.g. small until the peer has authenticated its hello).
+  void setMaxPayload(std::size_t max_payload) { max_payload_ = max_payload; }
   // Appends received bytes. Callers read at most room() bytes at a time.
   void feed(const std::uint8_t* data, std::size_t n);
   std::size_t room() const;
   // Next complete frame. After an error status the stream is desynchronised: close the connection.
   DecodeStatus next(Frame& f);
   std::size_t buffered() const { return buf_.size() - pos_; }
+  std::size_t capacity() const { return buf_.capacity(); }  // memory held
 
  private:
   std::size_t max_payload_;

@@ -1,5 +1,5 @@
 #pragma once
-// The codec's invariants, checked on arbitrary input: shared by the libFuzzer target (scripts/fuzz-usbl) and
+// The codec's invariants, checked on arbitrary input: shared by the libFuzzer target (`scripts/fuzz usbl`) and
 // the gtest that runs the same entry point over random and mutated streams in the normal suite.
 #include <cstddef>
 #include <cstdint>

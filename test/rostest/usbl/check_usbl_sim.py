@@ -137,12 +137,14 @@ class UsblSimTest(unittest.TestCase):
         """A small packet (a target position) requested from the AUV's beacon crosses without the tether."""
         packet = bytes([0x54, 0x47]) + (1234).to_bytes(2, "little") + (-567 & 0xFFFF).to_bytes(2, "little")
         self.remote_queue.publish(UInt8MultiArray(data=list(packet)))
+        # A request that reaches the beacon before its (latched) queue does is answered empty: wait for data.
+        received = lambda: [d for d in self.data_in if d]  # noqa: E731
         deadline = rospy.get_time() + 30
-        while rospy.get_time() < deadline and not self.data_in:
+        while rospy.get_time() < deadline and not received():
             self.data_out.publish(UInt8MultiArray(data=[1, 2, 3]))  # REQ: the remote answers with its queue
             rospy.sleep(1.0)
-        self.assertTrue(self.data_in, "no DAT_RECEIVE within 30 s")
-        self.assertEqual(self.data_in[0], packet)
+        self.assertTrue(received(), "no DAT_RECEIVE with data within 30 s: %s" % self.data_in)
+        self.assertEqual(received()[0], packet)
 
     def test_serial_device_replugged(self):
         """The simulator (the serial device) disappears and comes back: the node reopens the port and fixes resume."""

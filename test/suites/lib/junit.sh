@@ -4,7 +4,10 @@
 #   suite_env DIR              REPO, out (= $TEST_RESULTS_DIR), ws (= $WS or build/.ws), work (= $ws/DIR)
 #   junit_case CLASS NAME [pass|fail|skip] [MESSAGE] [SECONDS] [OUTPUT]
 #   junit_fuzz CLASS NAME RC LIBFUZZER_LOG SECONDS     pass when libFuzzer ran > 1000 inputs and exited 0
+#   fuzz_smoke CLASS SECONDS TARGET...                 scripts/fuzz TARGET SECONDS $work/TARGET, one case each
 #   junit_check_log CLASS NAME LOG                     pass when the log's last line is "ok"
+#   junit_cannot_run CLASS NAME REASON   the real part cannot run here: a failure naming REASON, or a skip
+#                                        when the user set OFFSHORE_GNC_ALLOW_SKIP=1 (README; CI never does)
 #   junit_write SUITE FILE     writes the cases so far, starts a new suite; non-zero status on any failure
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
 JUNIT_CASES="" JUNIT_TESTS=0 JUNIT_FAILS=0 JUNIT_SKIPS=0
@@ -42,6 +45,15 @@ junit_fuzz() {
   fi
 }
 
+fuzz_smoke() {
+  local class="$1" secs="$2" t rc
+  shift 2
+  for t in "$@"; do
+    "$REPO/scripts/fuzz" "$t" "$secs" "$work/$t" > "$work/$t.out" 2>&1 && rc=0 || rc=$?
+    junit_fuzz "$class" "${t}_fuzz" "$rc" "$work/$t/fuzz.log" "$secs"
+  done
+}
+
 junit_check_log() {
   if tail -n1 "$3" | grep -qx ok; then
     junit_case "$1" "$2" pass
@@ -49,6 +61,16 @@ junit_check_log() {
     junit_case "$1" "$2" fail "$(tail -n 3 "$3")"
   fi
   cat "$3" >&2
+}
+
+junit_cannot_run() {
+  if [ "${OFFSHORE_GNC_ALLOW_SKIP:-0}" = 1 ]; then
+    echo "!!! skipped (OFFSHORE_GNC_ALLOW_SKIP=1): $1.$2: $3" >&2
+    junit_case "$1" "$2" skip "$3"
+  else
+    echo "!!! FAILED: $1.$2 cannot run: $3 (OFFSHORE_GNC_ALLOW_SKIP=1 turns this into a skip)" >&2
+    junit_case "$1" "$2" fail "cannot run: $3"
+  fi
 }
 
 junit_write() {

@@ -200,6 +200,7 @@ class Pair {
     c.name = name;
     c.auth = !key.empty();
     c.key = key;
+    c.sim = true;  // the test keys are not deployment keys
     c.heartbeat_period = 0.05;
     c.link_timeout = 0.5;
     c.backoff_min = 0.02;
@@ -299,9 +300,14 @@ TEST(RelayEngine, ReceiverRestartLosesNothing) {
   usv = std::make_unique<Engine>(cfg, Pair::callbacks(ru2), cu2);
   usv->start();
   for (int i = 100; i < 150; ++i) auv.publish(0, kTarget, bytesOf(std::to_string(i)));
-  ASSERT_TRUE(Pair::waitFor(ru2, 100, 10.0)) << ru2.msgs.size();
+  // Delivery is at-least-once (what the first receiver had not acknowledged comes again), so wait for the
+  // contents, not a count.
   std::set<std::string> all(ru1.msgs.begin(), ru1.msgs.end());
-  all.insert(ru2.msgs.begin(), ru2.msgs.end());
+  for (int k = 0; k < 500 && all.size() < 150; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::lock_guard<std::mutex> l(ru2.m);
+    all.insert(ru2.msgs.begin(), ru2.msgs.end());
+  }
   for (int i = 0; i < 150; ++i) EXPECT_TRUE(all.count(std::to_string(i))) << i;
   EXPECT_GE(auv.status()[0].reconnects, 1u);
 }
@@ -322,14 +328,20 @@ TEST(RelayEngine, CompressedRateLimitedBestEffort) {
   ASSERT_TRUE(Pair::waitFor(ru, 1, 2.0));
   std::this_thread::sleep_for(std::chrono::milliseconds(600));  // refill the bucket
   const std::string big(50000, 'z');
+  // The bucket refills at 20 Hz while the loop runs: what may pass is the burst plus 20 per second of the loop
+  // (the loop is slow under the sanitizers or on a loaded machine; the bound follows it, not a guess).
+  const auto t0 = std::chrono::steady_clock::now();
   for (int i = 0; i < 100; ++i) auv.publish(0, kTarget, bytesOf(big));
+  const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::size_t allowed = 10 + static_cast<std::size_t>(20.0 * loop_s) + 1;
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   std::lock_guard<std::mutex> l(ru.m);
   const std::size_t got = ru.msgs.size() - 1;
   EXPECT_GE(got, 8u);
-  EXPECT_LE(got, 12u);
+  EXPECT_LE(got, allowed) << "loop " << loop_s << " s";
+  EXPECT_LE(allowed, 60u) << "the loop took too long to say anything about the limit";
   EXPECT_EQ(ru.msgs.back(), big);  // decompressed intact
-  EXPECT_GE(ca.get("rate_limited"), 88u);
+  EXPECT_GE(ca.get("rate_limited"), 100u - allowed);
   const auto st = auv.status()[0].topics[0];
   EXPECT_LT(st.bytes, got * big.size() / 20 + 2000);  // bytes on the wire: compressed
 }

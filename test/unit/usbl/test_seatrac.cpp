@@ -287,7 +287,7 @@ TEST(SeatracStream, ShuffledFramesAllDecode) {
 
 TEST(SeatracFuzzSmoke, EntryPointOnRandomAndMutatedInput) {
   // The libFuzzer target's entry point over random bytes and mutated real frames (the long run is
-  // scripts/fuzz-usbl); it aborts on any invariant violation.
+  // `scripts/fuzz usbl`); it aborts on any invariant violation.
   std::string stream;
   for (const auto& f : recordedFrames()) stream += f;
   std::mt19937 rng(13);
