@@ -143,6 +143,7 @@ class Screenshots:
     # box cuts the path, olive when it does not)
     COLOURS = {"planned_path": [(25, 255, 0)], "target": [(255, 0, 255)], "safety_box": [(255, 0, 0), (128, 128, 0)]}
     MIN_PIXELS = 30
+    COMPLETE = 1e9  # score bonus of a shot with every colour drawn: any complete shot beats every partial one
 
     def __init__(self, master, out):
         from offshore_gnc.testing.screenshot import RvizScreen
@@ -163,14 +164,14 @@ class Screenshots:
             return
         px = {k: sum(count_colour(tmp, rgb) for rgb in rgbs) for k, rgbs in self.COLOURS.items()}
         # all colours present beats any partial picture; among complete ones the latest (most path followed)
-        score = min(px.values()) >= self.MIN_PIXELS and 1e9 + self.last_t or sum(min(v, 500) for v in px.values())
+        score = min(px.values()) >= self.MIN_PIXELS and self.COMPLETE + self.last_t or sum(min(v, 500) for v in px.values())
         if score >= self.best_score:
             self.best, self.best_score = px, score
             os.replace(tmp, os.path.join(self.out, "rviz_usv.png"))
 
     def close(self, usv_phase=None):
         # a run quicker than the shot interval (an idle machine) still gets its picture: one at the end
-        if self.best is None or self.best_score < 1e9:
+        if self.best_score < self.COMPLETE:
             self.maybe_shoot(usv_phase, force=True)
         self.screen.__exit__(None, None, None)
         return self.best
