@@ -50,6 +50,29 @@ def relay_configs(folder):
     return files
 
 
+def vehicle_configs(scenario, auv_model, folder):
+    """The vehicles' configs for this run, on the scenario's local origin: in simulation the scenario places the
+    world, so a vehicle config written for another site (its `origin`) gets a copy in the run's folder with the
+    scenario's origin instead, said on the console, and nothing runs on two origins. Returns vehicle -> file."""
+    import yaml
+    files = {"usv": os.path.join(REPO, "config", "usv.yaml"),
+             "auv": os.path.join(REPO, "config", "auv_%s.yaml" % auv_model)}
+    with open(scenario) as f:
+        origin = (yaml.safe_load(f) or {}).get("origin")
+    for v, path in files.items():
+        with open(path) as f:
+            c = yaml.safe_load(f)
+        if not origin or c.get("origin") == origin:
+            continue
+        print("[mission] %s: origin %s replaced by the scenario's %s for this run" % (
+            os.path.relpath(path, REPO), c.get("origin"), origin), flush=True)
+        c["origin"] = origin
+        files[v] = os.path.join(folder, "%s-config.yaml" % v)
+        with open(files[v], "w") as f:
+            yaml.safe_dump(c, f, allow_unicode=True)
+    return files
+
+
 def parse_args(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scenario", default=os.path.join(REPO, "config", "scenarios", "pyhajarvi.yaml"))
@@ -209,6 +232,9 @@ def run(a):
     out = os.path.abspath(a.out or os.path.join(REPO, "reports", "%s-%s" % (
         name, datetime.datetime.now().strftime("%Y%m%d-%H%M%S"))))
     os.makedirs(out, exist_ok=True)
+    configs = vehicle_configs(a.scenario, a.auv_model, out)
+    # the check again with the configs the stacks get: two origins apart would offset every position
+    scenario_check.load(a.scenario, [configs["usv"], configs["auv"]])
     t0 = time.time()
     outcome = {"success": False, "reason": "not started"}
     with MasterSet(["usv", "auv"], log_dir=os.path.join(out, "logs")) as ms:
@@ -219,9 +245,11 @@ def run(a):
         launches = {
             "usv": ms["usv"].roslaunch(os.path.join(REPO, "launch", "usv.launch"), dict(
                 common, bag=os.path.join(out, "usv.bag"), rviz=str(a.rviz).lower(), relay_config=relay["usv"],
+                config=configs["usv"],
                 usv_params=os.path.abspath(a.usv_params) if a.usv_params else "")),
             "auv": ms["auv"].roslaunch(os.path.join(REPO, "launch", "auv.launch"), dict(
-                common, bag=os.path.join(out, "auv.bag"), vehicle_model=a.auv_model, relay_config=relay["auv"])),
+                common, bag=os.path.join(out, "auv.bag"), vehicle_model=a.auv_model, relay_config=relay["auv"],
+                config=configs["auv"])),
         }
         mons = {v: Monitor(ms[v], v, lockstep) for v in ("usv", "auv")}
         clock = SharedClock(mons) if lockstep else None

@@ -10,12 +10,14 @@ class ScenarioError(Exception):
     pass
 
 
-def load(path):
-    """Validated scenario as a dict; raises ScenarioError naming the problem."""
+def load(path, vehicle_configs=()):
+    """Validated scenario as a dict; raises ScenarioError naming the problem. With vehicle configs, their
+    local origins must be the scenario's (the tool names both when they are not)."""
     if not os.path.isfile(path):
         raise ScenarioError("scenario file not found: %s" % path)
     try:
-        r = subprocess.run(["rosrun", "offshore_gnc", "scenario_check", path], stdout=subprocess.PIPE,
+        r = subprocess.run(["rosrun", "offshore_gnc", "scenario_check", path] + list(vehicle_configs),
+                           stdout=subprocess.PIPE,
                            stderr=subprocess.STDOUT, timeout=60, text=True)
     except FileNotFoundError:
         raise ScenarioError("rosrun not found: source the workspace (devel/setup.bash) first")

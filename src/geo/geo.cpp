@@ -1,5 +1,6 @@
 #include "offshore_gnc/geo/geo.h"
 
+#include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
 #include <GeographicLib/UTMUPS.hpp>
 
@@ -42,6 +43,12 @@ LatLonAlt fromTm35fin(const Tm35& p, double alt_m) {
   GeographicLib::UTMUPS::Reverse(kTm35Zone, true, p.easting_m, p.northing_m, out.lat_deg, out.lon_deg);
   out.alt_m = alt_m;
   return out;
+}
+
+double surfaceDistance(const LatLonAlt& a, const LatLonAlt& b) {
+  double s12 = 0.0;
+  GeographicLib::Geodesic::WGS84().Inverse(a.lat_deg, a.lon_deg, b.lat_deg, b.lon_deg, s12);
+  return s12;
 }
 
 LocalNed::LocalNed(const LatLonAlt& origin)

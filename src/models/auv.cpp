@@ -13,6 +13,7 @@ namespace models {
 
 namespace {
 using Vec8 = Eigen::Matrix<double, 8, 1>;
+constexpr double kEmergence = 0.1;  // [m] of hull above the water over which the buoyancy fades out
 
 Thruster makeThruster(const char* name, Eigen::Vector3d pos, Eigen::Vector3d dir) {
   Thruster t;
@@ -182,15 +183,17 @@ void AuvModel::step(double dt, const Environment& env) {
   const double t0 = lf_.t;
   const Eigen::Vector4d tau = tcm_ * f_;  // eq. 3.16
   const Eigen::Vector3d vc = env.current(t0);
-  const double w_minus_b = p_.weight() - p_.buoyancy(env.params().water_density);  // eq. 3.21
+  const double weight = p_.weight(), buoyancy = p_.buoyancy(env.params().water_density);  // eq. 3.21
   auto deriv = [&](const Vec8& x) {
     // x = [N, E, D, psi, u, v, w, r]; (u, v, w) over ground; damping on the velocity relative to the water.
     const double c = std::cos(x(3)), s = std::sin(x(3));
     Eigen::Vector4d nu_r(x(4) - (c * vc.x() + s * vc.y()), x(5) - (-s * vc.x() + c * vc.y()), x(6) - vc.z(), x(7));
     const Eigen::Vector4d damping = d_lin_.cwiseProduct(nu_r) + d_quad_.cwiseProduct(nu_r.cwiseAbs().cwiseProduct(nu_r));
     // g(eta) = [0, 0, -(W - B), 0] on the left of eq. 3.14 is +(W - B) on the right: heavier sinks (z down).
-    Eigen::Vector4d g(0, 0, w_minus_b, 0);
-    if (x(2) <= 0.0 && w_minus_b < 0.0) g(2) *= std::clamp(1.0 + x(2) / 0.1, 0.0, 1.0);  // surfaces, does not fly
+    // Buoyancy fades as the hull leaves the water (over kEmergence) while the weight stays, so a buoyant AUV
+    // floats at the surface and one pushed above it (thrust, momentum) falls back; never flies.
+    const double immersed = std::clamp(1.0 + x(2) / kEmergence, 0.0, 1.0);
+    Eigen::Vector4d g(0, 0, weight - immersed * buoyancy, 0);
     const Eigen::Vector4d nu_dot = (tau - damping + g).cwiseQuotient(m_);
     Vec8 d;
     d << c * x(4) - s * x(5), s * x(4) + c * x(5), x(6), x(7), nu_dot;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "offshore_gnc/common/validate.h"
@@ -25,6 +26,11 @@ void requireFinite(const std::string& name, const std::vector<double>& v) {
 }
 // Index i and fraction w with x in [ax[i], ax[i+1]], clamped to the ends.
 void locate(const std::vector<double>& ax, double x, std::size_t& i, double& w) {
+  if (std::isnan(x)) {  // no comparison holds: upper_bound would return end() and index past the table
+    i = 0;
+    w = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
   if (ax.size() == 1 || x <= ax.front()) {
     i = 0;
     w = 0.0;

@@ -1,12 +1,16 @@
-// scenario_check FILE: validates a scenario before anything starts (the simulator's strict loader plus the
-// mission section); prints a one-line JSON summary, or the error naming the key and exits 2.
+// scenario_check FILE [VEHICLE_CONFIG...]: validates a scenario before anything starts (the simulator's strict
+// loader plus the mission section) and, given the vehicles' configs, that they share its local origin: the
+// simulators place the world by the scenario's origin, the navigation by the vehicle's, so two origins apart would
+// put every target off by their distance. Prints a one-line JSON summary, or the error and exits 2.
 #include <yaml-cpp/yaml.h>
 
 #include <cstdio>
 #include <set>
 #include <string>
 
+#include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/sim/scenario.h"
 
 using namespace offshore_gnc;
@@ -28,16 +32,37 @@ void checkMission(const std::string& path) {
   }
   if (m["max_sim_time"]) requireRange("mission.max_sim_time", m["max_sim_time"].as<double>(), 10.0, 86400.0);
 }
+
+constexpr double kOriginTolerance = 5.0;  // [m] GPS-grade agreement; beyond it every position would be offset
+
+void checkOrigin(const sim::Scenario& s, const std::string& scenario, const std::string& config) {
+  geo::LatLonAlt o;
+  const YAML::Node root = YAML::LoadFile(config);
+  if (!root["origin"]) throw ConfigError("vehicle config '" + config + "': key 'origin' is missing");
+  readParamsYaml(root, geo::LatLonAlt::table(), o, config, "origin/");
+  const double d = geo::surfaceDistance(s.origin, o);
+  if (d > kOriginTolerance) {
+    char msg[512];
+    const bool km = d >= 10000.0;
+    std::snprintf(msg, sizeof msg,
+                  "scenario '%s' has its origin at (%.6f, %.6f) but vehicle config '%s' at (%.6f, %.6f), %.1f %s "
+                  "apart (tolerance %.0f m): every component must run on one origin; set the two the same",
+                  scenario.c_str(), s.origin.lat_deg, s.origin.lon_deg, config.c_str(), o.lat_deg, o.lon_deg,
+                  km ? d / 1000.0 : d, km ? "km" : "m", kOriginTolerance);
+    throw ConfigError(msg);
+  }
+}
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: scenario_check FILE.yaml\n");
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: scenario_check FILE.yaml [VEHICLE_CONFIG.yaml...]\n");
     return 2;
   }
   try {
     const sim::Scenario s = sim::loadScenario(argv[1]);
     checkMission(argv[1]);
+    for (int i = 2; i < argc; ++i) checkOrigin(s, argv[1], argv[i]);
     std::printf("{\"scenario\": \"%s\", \"obstacles\": %zu, \"targets\": %zu, \"ok\": true}\n", s.name.c_str(),
                 s.world.buoys.size() + s.world.vessels.size(), s.world.targets.size());
     return 0;

@@ -44,6 +44,24 @@ def test_default_mission_succeeds(tmp_path):
         shutil.copy(os.path.join(str(tmp_path / "default"), "rviz_usv.png"), os.environ["OFFSHORE_GNC_SAVE_SCREENSHOT"])
 
 
+def test_the_mission_runs_wherever_the_scenario_puts_it(tmp_path):
+    """The default scenario moved to the Bay of Palma (2,700 km from the vehicle configs' Pyhajarvi origin): the
+    job runs every component on the scenario's origin, and the mission is the same one."""
+    text = open(os.path.join(REPO, "config", "scenarios", "pyhajarvi.yaml")).read()
+    moved = text.replace("origin: {latitude: 61.4507, longitude: 23.7270", "origin: {latitude: 39.5500, longitude: 2.6300")
+    assert moved != text
+    sc = tmp_path / "palma.yaml"
+    sc.write_text(moved)
+    r = subprocess.run([sys.executable, JOB, "--scenario", str(sc), "--out", str(tmp_path / "palma"), "--rate", "20",
+                        "--quiet"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
+    m = json.load(open(os.path.join(str(tmp_path / "palma"), "metrics.json")))
+    assert r.returncode == 0, r.stdout[-3000:]
+    assert "replaced by the scenario's" in r.stdout
+    assert m["success"] is True and m["usv_final_phase"] == "ARRIVED", m
+    assert m["target_error_m"] is not None and m["target_error_m"] < MAX_TARGET_ERROR_M, m
+    assert m["usv_final_distance_to_target_m"] < 10.0, m
+
+
 def test_no_target_scenario_ends_with_no_target(tmp_path):
     r, m = run("no_target.yaml", tmp_path / "none")
     assert r.returncode == 0, r.stdout[-3000:]  # the expected outcome of this scenario
@@ -61,7 +79,7 @@ def test_auv_stack_dies_usv_holds_position(tmp_path):
     assert list(m["stacks_died"]) == ["auv"] and "auv stack died" in m["outcome"], m["outcome"]
     assert m["usv_final_phase"] == "PEER_LOST", m
     assert m["survivor_drift_m"] is not None and m["survivor_drift_m"] < MAX_HOLD_DRIFT_M, m
-    assert m["auv_xte_samples"] > 0  # the killed recorder's bag was reindexed, not lost
+    assert m["auv_xte_samples"] + m["auv_approach_samples"] > 0  # the killed recorder's bag was reindexed, not lost
     assert m["target_error_m"] is None
 
 

@@ -27,7 +27,7 @@ def test_tracking_metrics_hand_computed(tmp_path):
 
 
 def test_report_from_bags(tmp_path):
-    rosbag = pytest.importorskip("rosbag")
+    import rosbag
     import rospy
     from nav_msgs.msg import Odometry, Path
     from geometry_msgs.msg import PoseStamped
@@ -75,3 +75,23 @@ def test_report_from_bags(tmp_path):
         assert (out / f).stat().st_size > 0, f
     assert json.load(open(out / "metrics.json"))["wall_time_s"] == 12.0
     assert "SUCCESS" in (out / "summary.md").read_text()
+
+
+def test_auv_tracking_counted_from_the_first_waypoint(tmp_path):
+    """The AUV's cross-track figures leave out the approach to its path (leg 1), reported apart (Table 4.4)."""
+    import rosbag
+    import rospy
+    from offshore_gnc.msg import GuidanceStatus
+
+    auv_bag = str(tmp_path / "auv.bag")
+    with rosbag.Bag(auv_bag, "w") as b:
+        for i in range(30):
+            g = GuidanceStatus(mode=GuidanceStatus.MODE_FOLLOW_PATH, num_waypoints=6)
+            g.active_leg = 1 if i < 10 else 2 + i // 10
+            g.cross_track_error = 5.0 if i < 10 else (0.2 if i % 2 else -0.2)
+            b.write("/auv/guidance/status", g, rospy.Time(100 + i))
+        g = GuidanceStatus(mode=GuidanceStatus.MODE_STATION_KEEPING, active_leg=5, cross_track_error=9.0)
+        b.write("/auv/guidance/status", g, rospy.Time(131))  # not following: in neither figure
+    m = report.build(None, auv_bag, None, str(tmp_path / "report"))
+    assert m["auv_xte_samples"] == 20 and m["auv_rmse_m"] == pytest.approx(0.2, abs=1e-4)
+    assert m["auv_approach_samples"] == 10 and m["auv_approach_rmse_m"] == pytest.approx(5.0, abs=1e-4)

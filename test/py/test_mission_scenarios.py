@@ -10,8 +10,8 @@ REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SCENARIOS = sorted(glob.glob(os.path.join(REPO, "config", "scenarios", "*.yaml")))
 
 
-def check(path):
-    r = subprocess.run(["rosrun", "offshore_gnc", "scenario_check", path], stdout=subprocess.PIPE,
+def check(path, *configs):
+    r = subprocess.run(["rosrun", "offshore_gnc", "scenario_check", path] + list(configs), stdout=subprocess.PIPE,
                        stderr=subprocess.STDOUT, text=True, timeout=60)
     return r.returncode, r.stdout
 
@@ -49,3 +49,22 @@ def test_main_job_refuses_a_bad_scenario_before_starting(tmp_path):
     assert r.returncode == 2
     assert "refused" in r.stdout and "unknown_key" in r.stdout
     assert not (tmp_path / "out" / "logs").exists()  # nothing was started
+
+
+def test_a_vehicle_config_on_another_origin_is_refused_naming_both(tmp_path):
+    """The simulators place the world by the scenario's origin and the navigation by the vehicle's: two origins
+    apart would offset every target by their distance (a target computed 2,520 km away), so the check refuses."""
+    default = os.path.join(REPO, "config", "scenarios", "pyhajarvi.yaml")
+    usv = os.path.join(REPO, "config", "usv.yaml")
+    rc, out = check(default, usv, os.path.join(REPO, "config", "auv_girona500.yaml"))
+    assert rc == 0, out
+    elsewhere = tmp_path / "usv_palma.yaml"
+    elsewhere.write_text(open(usv).read().replace("latitude: 61.4507", "latitude: 39.5500")
+                         .replace("longitude: 23.7270", "longitude: 2.6300"))
+    rc, out = check(default, str(elsewhere))
+    assert rc != 0
+    assert "61.450700" in out and "39.550000" in out and "km apart" in out, out
+    near = tmp_path / "usv_near.yaml"  # 1.1 m north: the same origin within GPS accuracy
+    near.write_text(open(usv).read().replace("latitude: 61.4507", "latitude: 61.45071"))
+    rc, out = check(default, str(near))
+    assert rc == 0, out

@@ -30,6 +30,9 @@ struct Tm35 {
 Tm35 toTm35fin(const LatLonAlt& p);
 LatLonAlt fromTm35fin(const Tm35& p, double alt_m = 0.0);
 
+// Distance along the WGS84 ellipsoid between two points' latitude and longitude [m] (heights ignored).
+double surfaceDistance(const LatLonAlt& a, const LatLonAlt& b);
+
 // Local tangent plane around a fixed origin. NED: x north, y east, z down (thesis convention).
 class LocalNed {
  public:

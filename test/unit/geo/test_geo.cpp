@@ -81,3 +81,11 @@ TEST(Geo, FrameSwaps) {
   EXPECT_NEAR(nedYawToEnu(kPi / 2), 0.0, 1e-12);       // east
   EXPECT_NEAR(enuYawToNed(nedYawToEnu(0.3)), 0.3, 1e-12);
 }
+
+TEST(Geo, SurfaceDistanceOnTheEllipsoid) {
+  // One degree along the equator is a * pi / 180; one degree of meridian from the equator is shorter (flattening).
+  EXPECT_NEAR(surfaceDistance({0, 0, 0}, {0, 1, 0}), 6378137.0 * M_PI / 180.0, 1e-3);
+  EXPECT_NEAR(surfaceDistance({0, 0, 0}, {1, 0, 0}), 110574.3, 1.0);
+  EXPECT_NEAR(surfaceDistance(kPyhajarviOrigin, kPyhajarviOrigin), 0.0, 1e-9);
+  EXPECT_NEAR(surfaceDistance({0, 0, 0}, {0, 1, 500}), surfaceDistance({0, 0, 0}, {0, 1, 0}), 1e-9);  // heights ignored
+}

@@ -248,6 +248,34 @@ TEST(AuvModel, HeaveThrustBalancingBuoyancyHoldsDepth) {
   EXPECT_NEAR(m.state().position.z(), 10.0, 1e-6);
 }
 
+TEST(AuvModel, ABuoyantAuvFloatsAtTheSurfaceAndNeverAboveIt) {
+  const AuvParams p = loadAuvParams("config/models/girona500.yaml");
+  ASSERT_LT(p.weight(), p.buoyancy(1000.0));
+  AuvModel m(p);
+  VehicleState s;
+  s.position.z() = 5.0;
+  m.reset(s);
+  Eigen::VectorXd cmd = Eigen::VectorXd::Zero(5);
+  double highest = 1e9;
+  for (int k = 0; k < 12000; ++k) {  // 60 s rising on its own buoyancy
+    m.step(0.01, cmd, Environment());
+    highest = std::min(highest, m.state().position.z());
+  }
+  EXPECT_GT(highest, -0.1);  // at most the emergence band out of the water
+  EXPECT_NEAR(m.state().velocity.z(), 0.0, 1e-3);
+  // Full heave thrust upward for 20 s, then released: it may lift the hull out a little, then falls back.
+  cmd(2) = cmd(3) = 1.0;
+  for (int k = 0; k < 2000; ++k) {
+    m.step(0.01, cmd, Environment());
+    highest = std::min(highest, m.state().position.z());
+  }
+  EXPECT_GT(highest, -0.5);
+  cmd.setZero();
+  for (int k = 0; k < 6000; ++k) m.step(0.01, cmd, Environment());
+  EXPECT_GT(m.state().position.z(), -0.1);
+  EXPECT_LT(m.state().position.z(), 0.0);
+}
+
 TEST(AuvModel, SurgeSteadyStateAndBadCommands) {
   const AuvParams p = AuvParams::girona500();
   AuvModel m(p);
@@ -300,6 +328,12 @@ TEST(Blocks, TransferFunctionAndLookups) {
   EXPECT_DOUBLE_EQ(l(0.5), 5.0);
   EXPECT_DOUBLE_EQ(l(-3), 0.0);
   EXPECT_THROW(Lookup1D("unsorted", {0, 2, 1}, {0, 1, 2}), ConfigError);
+  // NaN looks up NaN (it used to index past the table: a heap overflow found under AddressSanitizer).
+  EXPECT_TRUE(std::isnan(l(NAN)));
+  const Lookup2D l2("l2", {0, 1}, {0, 1}, {0, 1, 2, 3});
+  EXPECT_DOUBLE_EQ(l2(0.5, 0.5), 1.5);
+  EXPECT_TRUE(std::isnan(l2(NAN, 0.5)));
+  EXPECT_TRUE(std::isnan(l2(0.5, NAN)));
   TransportDelay d(0.3);
   EXPECT_DOUBLE_EQ(d.push(0.0, 1.0), 0.0);
   EXPECT_DOUBLE_EQ(d.push(0.2, 2.0), 0.0);
