@@ -10,6 +10,13 @@ prints where it is. Exit status 0 only if the mission ended as the scenario expe
 
 When one vehicle's stack dies (or is killed with --kill, to test exactly that), the job keeps watching the other
 one for --after-kill simulated seconds (or until it finishes) so that the report says what it did meanwhile.
+
+--auv-navigation usbl (the default) navigates the AUV on USBL fixes (auv.launch navigation:=usbl: the USBL node,
+the beacon simulator and the AuvNavigation filter on fixes, depth, AHRS and DVL publish /auv/odom); ins keeps the
+simulator's INS-like estimate. With usbl the job is the simulated acoustic channel: the beacon simulator on the
+AUV master needs the USV's true pose, so the USV's monitor echoes /usv/ground_truth/odom (10 Hz of simulated time)
+and the job hands each line to the AUV's monitor, which republishes it there with its header stamp (both masters
+run on the one lockstep clock). Simulation only: on the vehicles the acoustic link itself carries the signal.
 """
 import argparse
 import datetime
@@ -30,9 +37,11 @@ from offshore_gnc.testing.masters import free_port, kill_tree  # noqa: E402
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 
 
-def relay_configs(folder):
+def relay_configs(folder, speedup):
     """config/relay/{usv,auv}.yaml with the link on a free port instead of the fixed 11411 (two missions on one
-    machine would otherwise share a link, both holding the same simulation key); returns vehicle -> file."""
+    machine would otherwise share a link, both holding the same simulation key), and each topic's rate limit
+    (the relay counts in wall seconds) times the simulation's speed-up, so that /usv_gps still reaches the AUV
+    at its rate in simulated time (0: as fast as possible, unlimited); returns vehicle -> file."""
     import yaml
     files = {}
     port = free_port()
@@ -44,6 +53,9 @@ def relay_configs(folder):
         for p in c.get("peers", []):
             if p.get("address"):
                 p["address"] = "%s:%d" % (p["address"].rsplit(":", 1)[0], port)
+        for t in c.get("topics", []):
+            if t.get("rate_hz"):
+                t["rate_hz"] = float(t["rate_hz"]) * speedup if speedup > 0 else 0.0
         files[v] = os.path.join(folder, "relay-%s.yaml" % v)
         with open(files[v], "w") as f:
             yaml.safe_dump(c, f)
@@ -84,6 +96,10 @@ def parse_args(argv=None):
                     help="each simulator keeps its own clock at --rate (no shared lockstep time)")
     ap.add_argument("--max-sim-time", type=float, default=None, help="give up after this simulated time [s]")
     ap.add_argument("--auv-model", default="girona500", choices=["girona500", "acolor"])
+    ap.add_argument("--auv-navigation", default="usbl", choices=["usbl", "ins"],
+                    help="usbl (default): the AUV navigates on USBL fixes, depth, AHRS and DVL (the job carries the "
+                         "USV's true pose to the AUV master's beacon simulator); ins: the simulator's INS-like "
+                         "estimate")
     ap.add_argument("--usv-params", default="", metavar="FILE",
                     help="the simulated USV's model parameter file (config/models/ schema, e.g. from model_fit)")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
@@ -108,18 +124,25 @@ def parse_args(argv=None):
 
 
 class Monitor:
-    """One vehicle's status_monitor.py: its JSON status lines, and its simulator's clock in lockstep."""
+    """One vehicle's status_monitor.py: its JSON status lines, its simulator's clock in lockstep, and the topics
+    it echoes (`echo`, printed as lines kept in `echoed` for the job to forward) or republishes (`publish`)."""
 
-    def __init__(self, master, vehicle, lockstep):
+    def __init__(self, master, vehicle, lockstep, echo=(), publish=()):
         self.vehicle = vehicle
         cmd = [sys.executable, os.path.join(HERE, "status_monitor.py"), vehicle]
         if lockstep:
             cmd += ["--step-topic", "/%s_sim/sim/step" % vehicle]
+        for t in echo:
+            cmd += ["--echo", t]
+        for t in publish:
+            cmd += ["--publish", t]
         self.proc = subprocess.Popen(cmd, env=master.env(), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                      stderr=subprocess.DEVNULL, start_new_session=True, text=True, bufsize=1)
         master.procs.append(self.proc)
         self.last = {"phase": "STARTING", "sim_time": 0.0}
         self.reached = 0.0
+        self.echoed = []  # (topic, raw line) of echo lines since the last take_echoed()
+        self.bad_lines = 0
 
     def poll(self):
         while select.select([self.proc.stdout], [], [], 0)[0]:
@@ -127,11 +150,33 @@ class Monitor:
             if not line:
                 break
             try:
-                self.last = json.loads(line)
+                d = json.loads(line)
             except ValueError:
+                self.bad_lines += 1
                 continue
-            self.reached = self.last.get("reached", self.reached)
+            if not isinstance(d, dict):
+                self.bad_lines += 1
+            elif "echo" in d:
+                self.echoed.append((d["echo"], line))
+            else:
+                self.last = d
+                self.reached = self.last.get("reached", self.reached)
         return self.last
+
+    def take_echoed(self):
+        out, self.echoed = self.echoed, []
+        return out
+
+    def send(self, line):
+        """Hands an echo line to this monitor without ever blocking the job: False (the line dropped) when the
+        monitor is dead or its stdin pipe is full (not reading yet, or behind)."""
+        try:
+            if self.proc.poll() is not None or not select.select([], [self.proc.stdin], [], 0)[1]:
+                return False
+            self.proc.stdin.write(line if line.endswith("\n") else line + "\n")
+            return True
+        except (BrokenPipeError, ValueError, OSError):
+            return False
 
     def advance(self, t):
         """Let the simulator run up to simulated time t (lockstep)."""
@@ -139,6 +184,30 @@ class Monitor:
             self.proc.stdin.write("%.3f\n" % t)
         except (BrokenPipeError, ValueError):
             pass
+
+
+class AcousticChannel:
+    """The simulated acoustic channel (simulation only): the echo lines of TOPICS from one vehicle's monitor go to
+    the other's, which republishes them on its master. Counts what it forwarded and what it had to drop."""
+    TOPICS = ("/usv/ground_truth/odom",)  # the beacon simulator on the AUV master answers from the USV's truth
+
+    def __init__(self, source, sink):
+        self.source, self.sink = source, sink
+        self.forwarded = self.dropped = 0
+
+    def pump(self):
+        for topic, line in self.source.take_echoed():
+            if topic not in self.TOPICS:
+                continue
+            if self.sink.send(line):
+                self.forwarded += 1
+            else:
+                self.dropped += 1
+
+    def summary(self):
+        return "%d forwarded, %d dropped, %d unparsable from the %s monitor, %s republished, %s refused by the %s's" % (
+            self.forwarded, self.dropped, self.source.bad_lines, self.source.vehicle,
+            self.sink.last.get("republished", "?"), self.sink.last.get("bad_lines", "?"), self.sink.vehicle)
 
 
 class SharedClock:
@@ -241,7 +310,7 @@ def run(a):
         lockstep = not a.free_running
         common = {"sim": "true", "scenario": os.path.abspath(a.scenario), "rate": str(a.rate), "record": "true",
                   "lockstep": str(lockstep).lower()}
-        relay = relay_configs(os.path.join(out, "logs"))  # a free link port: missions side by side never meet
+        relay = relay_configs(os.path.join(out, "logs"), a.rate)  # a free link port: missions side by side never meet
         launches = {
             "usv": ms["usv"].roslaunch(os.path.join(REPO, "launch", "usv.launch"), dict(
                 common, bag=os.path.join(out, "usv.bag"), rviz=str(a.rviz).lower(), relay_config=relay["usv"],
@@ -249,9 +318,13 @@ def run(a):
                 usv_params=os.path.abspath(a.usv_params) if a.usv_params else "")),
             "auv": ms["auv"].roslaunch(os.path.join(REPO, "launch", "auv.launch"), dict(
                 common, bag=os.path.join(out, "auv.bag"), vehicle_model=a.auv_model, relay_config=relay["auv"],
-                config=configs["auv"])),
+                config=configs["auv"], navigation=a.auv_navigation,
+                usbl_port=os.path.join(out, "logs", "seatrac"))),  # missions side by side: one line each
         }
-        mons = {v: Monitor(ms[v], v, lockstep) for v in ("usv", "auv")}
+        usbl = a.auv_navigation == "usbl"
+        mons = {"usv": Monitor(ms["usv"], "usv", lockstep, echo=AcousticChannel.TOPICS if usbl else ()),
+                "auv": Monitor(ms["auv"], "auv", lockstep, publish=AcousticChannel.TOPICS if usbl else ())}
+        channel = AcousticChannel(mons["usv"], mons["auv"]) if usbl else None
         clock = SharedClock(mons) if lockstep else None
         shots = Screenshots(ms["usv"], out) if a.screenshot else None
         print("[mission] scenario %s, report folder %s" % (a.scenario, out), flush=True)
@@ -260,6 +333,8 @@ def run(a):
         while True:
             select.select([m.proc.stdout for m in mons.values()], [], [], 0.05)
             u, av = mons["usv"].poll(), mons["auv"].poll()
+            if channel:
+                channel.pump()
             if clock:
                 clock.tick([v for v in mons if v not in died])
             sim_t = max(u.get("sim_time", 0.0), av.get("sim_time", 0.0))
@@ -299,6 +374,8 @@ def run(a):
             outcome["rviz_pixels"] = shots.close(u.get("phase"))
         outcome["sim_time_s"] = round(sim_t, 1)
         print(fmt_progress(u, av), flush=True)
+        if channel:
+            print("[mission] acoustic channel (USV truth to the AUV master): " + channel.summary(), flush=True)
         # MasterSet's exit stops roslaunch with SIGINT: rosbag closes its bags cleanly.
     wall = time.time() - t0
     for v in ("usv", "auv"):  # a killed rosbag leaves an unindexed .active file: recover it, lose no data
@@ -318,7 +395,8 @@ def run(a):
                      wall_time_s=round(wall, 2), outcome=outcome)
     print("[mission] %s: %s" % ("SUCCESS" if m["success"] else "FAILED", outcome["reason"]))
     print("[mission] metrics: " + ", ".join("%s=%s" % (k, m[k]) for k in (
-        "usv_rmse_m", "auv_rmse_m", "target_error_m", "min_clearance_m", "sim_time_s", "wall_time_s")))
+        "usv_rmse_m", "auv_rmse_m", "target_error_m", "min_clearance_m", "auv_nav_source", "auv_nav_rmse_m",
+        "usbl_fixes_received", "usbl_fixes_rejected", "sim_time_s", "wall_time_s")))
     print("[mission] report: %s" % out)
     return 0 if m["success"] else 1
 

@@ -5,7 +5,8 @@
 
 Writes DIR/metrics.json, DIR/summary.md, DIR/map.png, DIR/cross_track.png. Positions are plotted in the local
 NED frame (north up, east right), metres. Cross-track indicators follow thesis Tables 4.4 and 5.1 (RMSE, SD,
-MAE of the LOS cross-track error while following a path).
+MAE of the LOS cross-track error while following a path). The AUV's navigation: the horizontal error of its
+estimate /auv/odom against its ground truth, and the USBL fixes it received (/auv/usbl/fix, rejected ones counted).
 """
 import argparse
 import json
@@ -20,6 +21,7 @@ THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4
 }
 
 MODE_FOLLOW_PATH = 1  # GuidanceStatus.MODE_FOLLOW_PATH (for the plots; the metrics tool filters the same)
+QUALITY_OK = 0  # UsblFix.QUALITY_OK: the only fixes navigation may use
 
 
 def tracking_metrics(path, selector=None):
@@ -34,23 +36,49 @@ def tracking_metrics(path, selector=None):
     return {"rmse": d["rmse_m"], "sd": d["sd_m"], "mae": d["mae_m"], "n": d["samples"]}
 
 
-def split_tracking(status_msgs):
+def split_tracking(status_msgs, path=None, truth=None):
     """Cross-track figures of an AUV's GuidanceStatus samples split at the first waypoint reached: the approach
     (leg 1, from wherever the vehicle was to the path's first switch; thesis Table 4.4 leaves it out) and the
-    tracking after it (legs 2 on). Both through the same C++ tool as the bag figures, fed CSV files."""
+    tracking after it (legs 2 on). Each on the guidance's own error (on its navigation estimate) and, given the
+    followed path [(north, east)] and the true track [(t, north, east, ...)], on the truth: the true position's
+    distance from the active leg. All through the same C++ tool as the bag figures, fed CSV files."""
     import tempfile
-    parts = {"approach": [m for _, m in status_msgs if m.active_leg < 2],
-             "tracking": [m for _, m in status_msgs if m.active_leg >= 2]}
+    truth_xte = []
+    for t, m in status_msgs:
+        k = m.active_leg
+        p = _interpolate(truth or [], t)
+        if not path or p is None or not 1 <= k < len(path):
+            truth_xte.append(float("nan"))
+            continue
+        (an, ae), (bn, be) = path[k - 1], path[k]
+        length = math.hypot(bn - an, be - ae)
+        truth_xte.append(((bn - an) * (p[1] - ae) - (be - ae) * (p[0] - an)) / length if length > 0 else float("nan"))
     out = {}
     with tempfile.TemporaryDirectory() as d:
-        for name, msgs in parts.items():
-            path = os.path.join(d, name + ".csv")
-            with open(path, "w") as f:
-                f.write("mode,cross_track_error\n")
-                for m in msgs:
-                    f.write("%d,%r\n" % (m.mode, m.cross_track_error))
-            out[name] = tracking_metrics(path)
+        for name, keep in (("approach", lambda m: m.active_leg < 2), ("tracking", lambda m: m.active_leg >= 2)):
+            csv = os.path.join(d, name + ".csv")
+            with open(csv, "w") as f:
+                f.write("mode,cross_track_error,cross_track_error_truth\n")
+                for (_, m), xt in zip(status_msgs, truth_xte):
+                    if keep(m):
+                        f.write("%d,%r,%r\n" % (m.mode, m.cross_track_error, xt))
+            out[name] = tracking_metrics(csv)
+            out[name + "_truth"] = tracking_metrics(csv, "cross_track_error_truth")
     return out
+
+
+def _interpolate(track, t):
+    """(north, east) of a track [(t, north, east, ...)] at time t (linear), None outside its span."""
+    import bisect
+    times = [p[0] for p in track]
+    if not times or t < times[0] or t > times[-1]:
+        return None
+    i = bisect.bisect_left(times, t)
+    if times[i] == t:
+        return track[i][1], track[i][2]
+    (t0, n0, e0, *_), (t1, n1, e1, *_) = track[i - 1], track[i]
+    w = (t - t0) / (t1 - t0)
+    return n0 + w * (n1 - n0), e0 + w * (e1 - e0)
 
 
 def read_bag(path, topics):
@@ -68,6 +96,24 @@ def read_bag(path, topics):
 def odom_track_ned(msgs):
     """nav_msgs/Odometry in map (ENU) -> [(t, north, east, down)]."""
     return [(t, m.pose.pose.position.y, m.pose.pose.position.x, -m.pose.pose.position.z) for t, m in msgs]
+
+
+def _stamp(t, m):
+    """A message's header stamp [s], or its bag time when the stamp is unset."""
+    s = m.header.stamp.to_sec()
+    return s if s > 0.0 else t
+
+
+def nav_error(estimate, truth):
+    """Horizontal errors [(t, m)] of an estimate track against the truth interpolated linearly in time at each
+    estimate's time; estimates outside the truth's time span are skipped. Both as [(t, north, east, ...)]."""
+    truth = sorted(truth)
+    errors = []
+    for t, n, e, *_ in estimate:
+        p = _interpolate(truth, t)
+        if p is not None:
+            errors.append((t, math.hypot(n - p[0], e - p[1])))
+    return errors
 
 
 def path_ned(path_msg):
@@ -108,14 +154,29 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
                            "/usv/guidance/safety_boxes", "/usv/obstacles", "/target", "/usv/mission/status"])
     a = read_bag(auv_bag, ["/auv/ground_truth/odom", "/auv/guidance/path", "/auv/guidance/planned_path",
                            "/auv/guidance/status",
-                           "/auv/sonar/targets", "/target", "/auv/mission/status"])
+                           "/auv/sonar/targets", "/target", "/auv/mission/status", "/auv/odom", "/auv/usbl/fix"])
     usv_track = odom_track_ned(u["/usv/ground_truth/odom"])
     auv_track = odom_track_ned(a["/auv/ground_truth/odom"])
+    # the AUV's navigation: its estimate against its truth, each at its header stamp; the fixes it received
+    auv_est_track = odom_track_ned(a["/auv/odom"])
+    nav_err = nav_error([(_stamp(t, m),) + p[1:] for (t, m), p in zip(a["/auv/odom"], auv_est_track)],
+                        [(_stamp(t, m),) + p[1:] for (t, m), p in zip(a["/auv/ground_truth/odom"], auv_track)])
+    fixes = [m for _, m in a["/auv/usbl/fix"]]
+    fixes_ok = [m for m in fixes if m.quality == QUALITY_OK]
     usv_xte = [(t, m.cross_track_error) for t, m in u["/usv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
     auv_xte = [(t, m.cross_track_error) for t, m in a["/auv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
     us = tracking_metrics(usv_bag or "", "/usv/guidance/status")
-    au_split = split_tracking(a["/auv/guidance/status"])
-    au, au_approach = au_split["tracking"], au_split["approach"]
+    # the path followed: the planner's when it published one (SBB waypoints included), else the mission's
+    # (the last one with waypoints: the mission ends by sending an empty path)
+    followed = [m for _, m in (a["/auv/guidance/planned_path"] or a["/auv/guidance/path"]) if m.poses]
+    auv_path = path_ned(followed[-1]) if followed else None
+    au_split = split_tracking(a["/auv/guidance/status"], auv_path, auv_track)
+    au, au_approach = au_split["tracking_truth"], au_split["approach_truth"]
+    # The navigation during the AUV's mission (until it reports finished); after it the AUV rises to the surface
+    # and drifts while the USV transits, reported apart.
+    auv_end_t = next((t for t, m in a["/auv/mission/status"] if m.finished), float("inf"))
+    nav_during = [e for t, e in nav_err if t <= auv_end_t]
+    nav_after = [e for t, e in nav_err if t > auv_end_t]
 
     targets_true = sc.get("targets", []) or []
     detected = None
@@ -147,7 +208,15 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "auv_rmse_m": au["rmse"], "auv_sd_m": au["sd"], "auv_mae_m": au["mae"], "auv_xte_samples": au["n"],
         # the AUV's figures above count from the first waypoint reached (as Table 4.4); its approach apart
         "auv_approach_rmse_m": au_approach["rmse"], "auv_approach_samples": au_approach["n"],
+        # the same from the guidance's own cross-track error, i.e. on the AUV's navigation estimate
+        "auv_rmse_estimate_m": au_split["tracking"]["rmse"],
         "target_error_m": target_error, "target_error_3d_m": target_error_3d,
+        # what the AUV navigated on, and how well: its estimate's horizontal error against its ground truth
+        "auv_nav_source": "usbl" if fixes_ok else "ins",
+        "auv_nav_rmse_m": math.sqrt(sum(e * e for e in nav_during) / len(nav_during)) if nav_during else float("nan"),
+        "auv_nav_max_m": max(nav_during) if nav_during else float("nan"), "auv_nav_samples": len(nav_during),
+        "auv_nav_after_max_m": max(nav_after) if nav_after else float("nan"),
+        "usbl_fixes_received": len(fixes), "usbl_fixes_rejected": len(fixes) - len(fixes_ok),
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
         "min_clearance_m": clearance(usv_track, sc.get("obstacles", []) or []),
         # where the USV really ended, against the true target (the stand-off is part of this distance)
@@ -169,12 +238,12 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     with open(os.path.join(out, "metrics.json"), "w") as f:
         json.dump(clean, f, indent=2)
 
-    _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte)
+    _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_est_track, fixes_ok)
     _summary(out, clean, scenario)
     return clean
 
 
-def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte):
+def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_est_track=(), fixes_ok=()):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -200,6 +269,14 @@ def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte):
         ax.plot([p[2] for p in usv_track], [p[1] for p in usv_track], color="blue", lw=2, label="USV trajectory")
     if auv_track:
         ax.plot([p[2] for p in auv_track], [p[1] for p in auv_track], color="purple", lw=1.5, label="AUV trajectory")
+    if auv_est_track:
+        ax.plot([p[2] for p in auv_est_track], [p[1] for p in auv_est_track], "--", color="magenta", lw=0.8,
+                label="AUV estimate (/auv/odom)")
+    fix_pts = [(f.position_ned.x, f.position_ned.y) for f in fixes_ok
+               if math.isfinite(f.position_ned.x) and math.isfinite(f.position_ned.y)]
+    if fix_pts:
+        ax.plot([p[1] for p in fix_pts], [p[0] for p in fix_pts], ".", color="darkorange", ms=3, ls="none",
+                label="USBL fixes (accepted)")
     for tt in sc.get("targets", []) or []:
         ax.plot(tt["east"], tt["north"], "k*", ms=14, label="target (true)")
     if detected:
@@ -248,6 +325,9 @@ def _summary(out, m, scenario):
         "| detection time | %s | |" % _fmt(m["detection_time_s"], " s"),
         "| target localisation error | %s | |" % _fmt(m["target_error_m"], " m"),
         "| minimum clearance to obstacles | %s | |" % _fmt(m["min_clearance_m"], " m"),
+        "| AUV navigation error, horizontal (estimate vs truth; %s) | RMSE %s, max %s | |" % (
+            m["auv_nav_source"], _fmt(m["auv_nav_rmse_m"], " m"), _fmt(m["auv_nav_max_m"], " m")),
+        "| USBL fixes | %d received, %d rejected | |" % (m["usbl_fixes_received"], m["usbl_fixes_rejected"]),
         "| USV final distance to the true target | %s | |" % _fmt(m["usv_final_distance_to_target_m"], " m"),
         "| simulated time | %s | |" % _fmt(m["sim_time_s"], " s"),
         "| wall time | %s | |" % _fmt(m["wall_time_s"], " s"),

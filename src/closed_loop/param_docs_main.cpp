@@ -9,10 +9,12 @@
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/guidance/pipeline.h"
 #include "offshore_gnc/mission/mission.h"
+#include "offshore_gnc/navigation/auv_navigator.h"
 #include "offshore_gnc/navigation/gps_navigator.h"
 #include "offshore_gnc/perception/lidar_targets.h"
 #include "offshore_gnc/perception/sensor_frame.h"
 #include "offshore_gnc/perception/sonar_targets.h"
+#include "offshore_gnc/safety/supervisor.h"
 #include "offshore_gnc/usbl/session.h"
 
 using namespace offshore_gnc;
@@ -80,6 +82,8 @@ int main() {
         mission::CoverageArea::table(), {{"default", mission::CoverageArea()}}, "coverage/");
   table("GPS-compass navigation", "`config/usv.yaml` -> the GpsNavigation nodelet.",
         navigation::GpsNavigatorConfig::table(), {{"default", navigation::GpsNavigatorConfig()}});
+  table("AUV navigation", "`config/navigation/auv_<model>.yaml` -> the AuvNavigation nodelet (USBL + depth + AHRS + DVL).",
+        navigation::AuvNavigatorConfig::table(), {{"default", navigation::AuvNavigatorConfig()}});
   table("Local origin", "`origin/` in the vehicle configs (`config/usv.yaml`, `config/auv_<model>.yaml`).",
         geo::LatLonAlt::table(), {{"default", geo::LatLonAlt()}}, "origin/");
   table("LiDAR targets", "`config/perception/lidar_usv.yaml` -> the LidarTargets nodelet.",
@@ -90,5 +94,15 @@ int main() {
         perception::SensorFrameParams::table(), {{"default", perception::SensorFrameParams()}});
   table("USBL session", "`config/usbl/usbl.yaml` -> the Usbl nodelet's transceiver session.",
         usbl::SessionParams::table(), {{"default", usbl::SessionParams()}});
+  table("Safety supervisor", "the vehicles' supervisor rules (docs/safety.md); `usv` and `auv` are the presets.",
+        safety::SupervisorConfig::table(), {{"usv", safety::usvDefaults()}, {"auv", safety::auvDefaults()}});
+  for (const auto& v : {std::make_pair("USV", safety::usvDefaults()), std::make_pair("AUV", safety::auvDefaults())}) {
+    std::printf("### %s safety rules (the preset's enabled rules)\n\n| rule | condition | detection | release | action | "
+                "recovery |\n| --- | --- | --- | --- | --- | --- |\n", v.first);
+    for (const auto& r : safety::ruleTable(v.second))
+      std::printf("| `%s` | %s | %.6g s | %.6g s | %s | %s |\n", r.name.c_str(), r.condition.c_str(), r.detection,
+                  r.release, safety::actionName(r.action), r.recovery ? "when clear" : "latched until reset");
+    std::printf("\n");
+  }
   return 0;
 }

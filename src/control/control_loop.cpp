@@ -53,6 +53,22 @@ void ControlLoop::onState(const VehicleState& s, double t) {
   have_state_ = true;
 }
 
+const char* safetyOverrideName(SafetyOverride o) {
+  switch (o) {
+    case SafetyOverride::kNone: return "none";
+    case SafetyOverride::kHold: return "hold";
+    case SafetyOverride::kNeutral: return "neutral";
+    case SafetyOverride::kSurface: return "surface";
+  }
+  return "?";
+}
+
+void ControlLoop::setSafety(SafetyOverride o, const std::string& reason) {
+  if (o != safety_) have_hold_ = false;  // a new override holds where the vehicle then is
+  safety_ = o;
+  safety_reason_ = reason;
+}
+
 const Counters& ControlLoop::controllerCounters() const {
   return usv_ ? usv_->counters() : g500_ ? g500_->counters() : acolor_->counters();
 }
@@ -72,6 +88,26 @@ ActuatorCommand ControlLoop::update(double t) {
     r = ref_;
     why_.clear();
     out.active = true;
+  }
+  if (safety_ != SafetyOverride::kNone) {
+    const bool neutral = safety_ == SafetyOverride::kNeutral || (safety_ == SafetyOverride::kSurface && usv_) ||
+                         !have_state_ || !isFinite(state_);
+    if (neutral) {
+      r = MotionReference();
+      out.active = false;
+    } else {
+      if (!have_hold_) {  // where the vehicle is when the override begins (or when it first has a state)
+        hold_ = MotionReference();
+        hold_.mode = ReferenceMode::kHold;
+        hold_.point = state_.position;
+        hold_.heading = hold_.path_angle = state_.yaw;
+        hold_.depth = safety_ == SafetyOverride::kSurface ? 0.0 : state_.position.z();
+        have_hold_ = true;
+      }
+      r = hold_;
+      out.active = true;
+    }
+    why_ = std::string("safety ") + safetyOverrideName(safety_) + ": " + safety_reason_;
   }
   if (usv_) out.joystick = usv_->update(state_, r);
   else if (g500_) out.thrusters = g500_->update(state_, r);

@@ -4,6 +4,7 @@
 //                         the priority of manual input)
 //   vehicle: girona500 -> ThrusterSetpoints on thruster_setpoints (T^+ allocation, saturation)
 //   vehicle: acolor    -> RcChannels on rc_channels (PWM 1100-1900 us)
+// The vehicle's safety supervisor (safety/state) overrides guidance: hold, neutral or surface until it clears.
 // Thin: parameters, message conversion, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <dynamic_reconfigure/server.h>
@@ -12,6 +13,7 @@
 #include <offshore_gnc/GuidanceStatus.h>
 #include <offshore_gnc/JoystickCommand.h>
 #include <offshore_gnc/RcChannels.h>
+#include <offshore_gnc/SafetyState.h>
 #include <offshore_gnc/ThrusterSetpoints.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
@@ -53,6 +55,7 @@ class ControlNodelet : public nodelet::Nodelet {
     }
     status_sub_ = nh.subscribe("guidance/status", 10, &ControlNodelet::onStatus, this);
     odom_sub_ = nh.subscribe("odom", 10, &ControlNodelet::onOdom, this);
+    safety_sub_ = nh.subscribe("safety/state", 10, &ControlNodelet::onSafety, this);
 
     reconfigure_ = std::make_unique<dynamic_reconfigure::Server<ControlConfig>>(reconf_mutex_, pnh);
     reconfigure_->updateConfig(toConfig(cp));
@@ -144,13 +147,30 @@ class ControlNodelet : public nodelet::Nodelet {
     }
   }
 
+  // The supervisor's action -> what control does: warn asks nothing; abort is a surface (the USV: neutral).
+  void onSafety(const SafetyState::ConstPtr& m) {
+    using O = control::SafetyOverride;
+    O o = O::kNone;
+    switch (m->manual ? static_cast<std::uint8_t>(SafetyState::ACTION_NONE) : m->action) {
+      case SafetyState::ACTION_HOLD: o = O::kHold; break;
+      case SafetyState::ACTION_NEUTRAL: o = O::kNeutral; break;
+      case SafetyState::ACTION_SURFACE:
+      case SafetyState::ACTION_ABORT: o = O::kSurface; break;
+      default: break;
+    }
+    std::lock_guard<std::mutex> l(mutex_);
+    if (o != loop_->safety())
+      NODELET_WARN("safety override %s: %s", control::safetyOverrideName(o), m->reason.c_str());
+    loop_->setSafety(o, m->active_rule + ": " + m->reason);
+  }
+
   std::unique_ptr<control::ControlLoop> loop_;
   std::mutex mutex_;
   boost::recursive_mutex reconf_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<ControlConfig>> reconfigure_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::Publisher joy_pub_, thr_pub_, rc_pub_;
-  ros::Subscriber status_sub_, odom_sub_;
+  ros::Subscriber status_sub_, odom_sub_, safety_sub_;
   ros::Timer timer_;
 };
 

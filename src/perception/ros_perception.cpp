@@ -54,6 +54,12 @@ perception::SonarBeamView beamView(const offshore_gnc::SonarBeam& m) {
 bool lookupPose(const tf2_ros::Buffer& tf, const std::string& target, const std::string& source,
                 const ros::Time& stamp, double timeout, Eigen::Isometry3d& pose, std::string& error) {
   try {
+    // Without any transform between the frames yet (the AUV's navigation before its first USBL fix) waiting
+    // would only block the manager's threads for `timeout` per message: fail at once.
+    if (!tf.canTransform(target, source, ros::Time(0))) {
+      error = "no transform " + target + " <- " + source + " yet";
+      return false;
+    }
     const auto t = tf.lookupTransform(target, source, stamp, ros::Duration(timeout));
     pose = tf2::transformToEigen(t);
     return true;

@@ -1,8 +1,10 @@
 // AuvSim: the AUV simulator for the AUV's own master. Owns /clock, integrates the AUV, publishes ground truth
 // (metrics only), the AHRS (/auv/imu), the depth sensor (/auv/pressure), the Micron-like sonar beams and the
-// navigation estimate /auv/odom + TF (a DVL-aided INS stand-in: truth + noise + drift, simulation only).
+// navigation estimate /auv/odom + TF (a DVL-aided INS stand-in: truth + noise + drift, simulation only; off with
+// ~odom/enabled false, when the navigation nodelet publishes both) and, on a Girona500, the DVL (/auv/dvl).
 // Takes /auv/thruster_setpoints (Girona500) or /auv/rc_channels (aColor AUV).
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <geometry_msgs/TwistWithCovarianceStamped.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/FluidPressure.h>
@@ -50,6 +52,9 @@ class AuvSimNodelet : public nodelet::Nodelet {
       cfg.odom_rate_hz = p.number("odom/rate", cfg.odom_rate_hz, 0.1, 100);
       cfg.ins.position_sigma = p.number("odom/position_sigma", cfg.ins.position_sigma, 0, 100);
       cfg.ins.drift_per_sqrt_s = p.number("odom/drift", cfg.ins.drift_per_sqrt_s, 0, 10);
+      odom_on_ = p.flag("odom/enabled", true);  // false: the navigation nodelet publishes /auv/odom + TF
+      cfg.dvl.rate_hz = p.number("dvl/rate", cfg.dvl.rate_hz, 0.1, 100);
+      cfg.dvl.velocity_sigma = p.number("dvl/sigma", cfg.dvl.velocity_sigma, 0, 10);
       const std::string vehicle = p.choice("vehicle_model", "girona500", {"girona500", "acolor"});
       cfg.auv = vehicle == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
       const std::string params = p.text("model_params", "");  // config/models/*.yaml (models module)
@@ -62,7 +67,8 @@ class AuvSimNodelet : public nodelet::Nodelet {
     }
     runner_ = std::make_unique<sim_ros::SimRunner>(getPrivateNodeHandle(), cfg.dt, rate, lockstep, [this] { return step(); });
     truth_pub_ = nh.advertise<nav_msgs::Odometry>("/auv/ground_truth/odom", 10);
-    odom_pub_ = nh.advertise<nav_msgs::Odometry>("/auv/odom", 10);
+    if (odom_on_) odom_pub_ = nh.advertise<nav_msgs::Odometry>("/auv/odom", 10);
+    if (sim_->hasDvl()) dvl_pub_ = nh.advertise<geometry_msgs::TwistWithCovarianceStamped>("/auv/dvl", 10);
     imu_pub_ = nh.advertise<sensor_msgs::Imu>("/auv/imu", 20);
     pressure_pub_ = nh.advertise<sensor_msgs::FluidPressure>("/auv/pressure", 10);
     sonar_pub_ = nh.advertise<SonarBeam>("/auv/sonar/beam", 50);
@@ -80,8 +86,9 @@ class AuvSimNodelet : public nodelet::Nodelet {
     });
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
     runner_->start();
-    NODELET_INFO("AUV simulator: scenario '%s', %zu targets, %zu walls, rate %g%s", scenario_.name.c_str(),
-                 scenario_.world.targets.size(), scenario_.world.walls.size(), rate, lockstep ? " (lockstep)" : "");
+    NODELET_INFO("AUV simulator: scenario '%s', %zu targets, %zu walls, rate %g%s%s%s", scenario_.name.c_str(),
+                 scenario_.world.targets.size(), scenario_.world.walls.size(), rate, lockstep ? " (lockstep)" : "",
+                 sim_->hasDvl() ? ", DVL" : "", odom_on_ ? "" : ", no INS-like odom (navigation publishes it)");
   }
 
   ~AuvSimNodelet() override {
@@ -105,7 +112,7 @@ class AuvSimNodelet : public nodelet::Nodelet {
     const auto& s = sim_->state();
     const ros::Time stamp(s.t);
     if (++truth_count_ % 5 == 0) truth_pub_.publish(ros_util::toOdometry(s, "map", base_frame_));
-    if (out.odom) {
+    if (odom_on_ && out.odom) {
       const auto o = ros_util::toOdometry(*out.odom, "map", base_frame_);
       odom_pub_.publish(o);
       tf_.sendTransform(ros_util::toTransform(o));
@@ -137,6 +144,18 @@ class AuvSimNodelet : public nodelet::Nodelet {
       m.variance = out.depth->sigma_pa * out.depth->sigma_pa;
       pressure_pub_.publish(m);
     }
+    if (out.dvl) {
+      // FRD -> FLU (ROS body frame): y and z negated; the noise is independent per axis
+      geometry_msgs::TwistWithCovarianceStamped m;
+      m.header.stamp = stamp;
+      m.header.frame_id = base_frame_;
+      m.twist.twist.linear.x = out.dvl->velocity.x();
+      m.twist.twist.linear.y = -out.dvl->velocity.y();
+      m.twist.twist.linear.z = -out.dvl->velocity.z();
+      const double vv = out.dvl->velocity_sigma * out.dvl->velocity_sigma;
+      m.twist.covariance[0] = m.twist.covariance[7] = m.twist.covariance[14] = vv;  // angular: not measured (0)
+      dvl_pub_.publish(m);
+    }
     if (out.sonar) {
       const auto& b = sim_->beam();
       SonarBeam m;
@@ -158,7 +177,8 @@ class AuvSimNodelet : public nodelet::Nodelet {
   std::unique_ptr<sim_ros::SimRunner> runner_;
   std::string base_frame_;
   unsigned long truth_count_ = 0;
-  ros::Publisher truth_pub_, odom_pub_, imu_pub_, pressure_pub_, sonar_pub_;
+  bool odom_on_ = true;
+  ros::Publisher truth_pub_, odom_pub_, imu_pub_, pressure_pub_, sonar_pub_, dvl_pub_;
   ros::Subscriber setpoint_sub_, rc_sub_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   tf2_ros::TransformBroadcaster tf_;

@@ -1,4 +1,4 @@
-// Sensor simulators (GPS-compass, multi-layer LiDAR, mechanical imaging sonar, depth, AHRS, INS estimate).
+// Sensor simulators (GPS-compass, multi-layer LiDAR, mechanical imaging sonar, depth, AHRS, DVL, INS estimate).
 #include "offshore_gnc/sim/sensors.h"
 
 #include <Eigen/Geometry>
@@ -276,6 +276,17 @@ AhrsReading Ahrs::measure(const VehicleState& s, const Eigen::Vector3d& accel_bo
   r.gyro_sigma = cfg_.gyro_sigma;
   r.accel_sigma = cfg_.accel_sigma;
   return r;
+}
+
+// ---------------------------------------------------------------- DVL
+Dvl::Dvl(const DvlConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) {
+  requireRate("dvl/rate", cfg.rate_hz);
+  requireRange("dvl/sigma", cfg.velocity_sigma, 0, 10);
+}
+
+DvlReading Dvl::measure(const VehicleState& s) {
+  const Eigen::Vector3d noise(n_(rng_), n_(rng_), n_(rng_));
+  return {s.t, s.velocity + cfg_.velocity_sigma * noise, cfg_.velocity_sigma};
 }
 
 // ---------------------------------------------------------------- INS estimate

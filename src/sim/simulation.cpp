@@ -91,11 +91,14 @@ AuvSimulation::AuvSimulation(const Scenario& sc, const Config& cfg)
       sonar_(cfg.sonar, sc.world, cfg.seed * 7919 + 3),
       depth_(cfg.depth, cfg.seed * 7919 + 4),
       ahrs_(cfg.ahrs, cfg.seed * 7919 + 5),
-      ins_(cfg.ins, cfg.seed * 7919 + 6) {
+      dvl_(cfg.dvl, cfg.seed * 7919 + 7),
+      ins_(cfg.ins, cfg.seed * 7919 + 6),
+      has_dvl_(cfg.auv.type == models::AuvType::Girona500) {
   requireRange("dt", cfg.dt, 1e-4, 0.1);
   sonar_every_ = everySteps("sonar/ping_rate", cfg.sonar.ping_rate_hz, cfg.dt);
   depth_every_ = everySteps("depth/rate", cfg.depth.rate_hz, cfg.dt);
   ahrs_every_ = everySteps("ahrs/rate", cfg.ahrs.rate_hz, cfg.dt);
+  dvl_every_ = everySteps("dvl/rate", cfg.dvl.rate_hz, cfg.dt);
   odom_every_ = everySteps("odom_rate", cfg.odom_rate_hz, cfg.dt);
   counters_.increment("rejected_commands", 0);  // listed in diagnostics from the start
   VehicleState s;
@@ -124,10 +127,12 @@ const AuvSimulation::Outputs& AuvSimulation::step() {
   ++step_;
   out_.ahrs.reset();
   out_.depth.reset();
+  out_.dvl.reset();
   out_.odom.reset();
   out_.sonar = false;
   if (step_ % ahrs_every_ == 0) out_.ahrs = ahrs_.measure(s, (s.velocity - before.velocity) / cfg_.dt);
   if (step_ % depth_every_ == 0) out_.depth = depth_.measure(s);
+  if (has_dvl_ && step_ % dvl_every_ == 0) out_.dvl = dvl_.measure(s);
   if (step_ % odom_every_ == 0) out_.odom = ins_.estimate(s);
   if (cfg_.sonar_on && step_ % sonar_every_ == 0) {
     sonar_.ping(s, beam_);

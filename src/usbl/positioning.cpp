@@ -48,8 +48,13 @@ Positioner::Positioner(const Mounting& mount, const QualityLimits& limits)
   requirePositive("max_fit_error", limits.max_fit_error);
   requirePositive("max_age", limits.max_age_s);
   requirePositive("max_pose_gap", limits.max_pose_gap_s);
+  requireRange("max_pose_wait", limits.max_pose_wait_s, 0.0, limits.max_age_s);
   requirePositive("max_depth_error", limits.max_depth_error_m);
   requirePositive("max_depth_gap", limits.max_depth_gap_s);
+}
+
+bool Positioner::ready(double t_reply, double t_now) const {
+  return (usv_pos_.lastTime() >= t_reply && usv_att_.lastTime() >= t_reply) || t_now - t_reply >= limits_.max_pose_wait_s;
 }
 
 FixResult Positioner::process(const AcoFix& fix, double t_reply, double t_now) {

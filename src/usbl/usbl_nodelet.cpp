@@ -54,6 +54,7 @@ class UsblNodelet : public nodelet::Nodelet {
       lim.max_fit_error = p.number("max_fit_error", 2.0, 0.01, 300);
       lim.max_age_s = p.number("max_age", 2.0, 0.01, 60);
       lim.max_pose_gap_s = p.number("max_pose_gap", 0.5, 0.01, 10);
+      lim.max_pose_wait_s = p.number("max_pose_wait", 1.5, 0.0, 60);
       lim.max_depth_error_m = p.number("max_depth_error", 3.0, 0.01, 1000);
       lim.max_depth_gap_s = p.number("max_depth_gap", 1.0, 0.01, 10);
       water_density_ = p.number("water_density", 1000.0, 990, 1050);
@@ -97,6 +98,11 @@ class UsblNodelet : public nodelet::Nodelet {
                              "too_many_channels", "line_too_long", "bad_value"});
       std::lock_guard<std::mutex> lock(mutex_);
       ros_util::addCounters(s, positioner_->counters());
+    });
+    // fixes whose USV pose never comes (relay down) leave the queue as stale after max_pose_wait
+    pending_timer_ = nh.createTimer(ros::Duration(0.2), [this](const ros::TimerEvent&) {
+      std::lock_guard<std::mutex> lock(pending_mutex_);
+      flushPending();
     });
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->update(); });
     running_ = true;
@@ -167,7 +173,27 @@ class UsblNodelet : public nodelet::Nodelet {
     if (ev.kind != usbl::SessionEvent::kNone) publishFix(ev.fix, now);
   }
 
+  // A fix waits (in arrival order) until the USV's relayed GPS and heading have reached its time: they come
+  // over the relay, later than the reply. Called on each reply and each GPS / heading sample.
   void publishFix(const usbl::AcoFix& f, const ros::Time& now) {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    pending_.emplace_back(f, now);
+    flushPending();
+  }
+  void flushPending() {  // pending_mutex_ held
+    while (!pending_.empty()) {
+      bool ready;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        ready = positioner_->ready(pending_.front().second.toSec(), ros::Time::now().toSec());
+      }
+      if (!ready) return;
+      place(pending_.front().first, pending_.front().second);
+      pending_.pop_front();
+    }
+  }
+
+  void place(const usbl::AcoFix& f, const ros::Time& now) {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     usbl::FixResult r;
     {
@@ -225,8 +251,12 @@ class UsblNodelet : public nodelet::Nodelet {
       return;
     }
     const Eigen::Vector3d ned = local_->toNed({g.latitude, g.longitude, g.altitude});
-    std::lock_guard<std::mutex> lock(mutex_);
-    positioner_->addUsvPosition(g.header.stamp.toSec(), ned);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      positioner_->addUsvPosition(g.header.stamp.toSec(), ned);
+    }
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    flushPending();
   }
 
   void onHeading(const geometry_msgs::QuaternionStamped& q) {
@@ -236,8 +266,12 @@ class UsblNodelet : public nodelet::Nodelet {
       NODELET_WARN_THROTTLE(5.0, "ignoring /usv_heading with a non-unit quaternion");
       return;
     }
-    std::lock_guard<std::mutex> lock(mutex_);
-    positioner_->addUsvAttitude(q.header.stamp.toSec(), usbl::enuFluToNedFrd(e));
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      positioner_->addUsvAttitude(q.header.stamp.toSec(), usbl::enuFluToNedFrd(e));
+    }
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    flushPending();
   }
 
   void onPressure(const sensor_msgs::FluidPressure& p) {
@@ -260,6 +294,9 @@ class UsblNodelet : public nodelet::Nodelet {
   std::unique_ptr<usbl::SerialPort> port_;
   usbl::StreamDecoder decoder_;
   std::mutex mutex_;  // positioner (ROS callbacks vs the I/O thread)
+  std::mutex pending_mutex_;  // fixes waiting for the USV's pose (taken before mutex_, never inside it)
+  std::deque<std::pair<usbl::AcoFix, ros::Time>> pending_;
+  ros::Timer pending_timer_;
   std::unique_ptr<usbl::Positioner> positioner_;
   Counters counters_;
   std::atomic<bool> running_{false}, port_open_{false};

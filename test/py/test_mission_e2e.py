@@ -14,6 +14,8 @@ MAX_TARGET_ERROR_M = 2.0
 MIN_CLEARANCE_M = 0.0
 MIN_PIXELS = 30  # of each colour in rviz's 3-D view (the job's Screenshots.MIN_PIXELS)
 MAX_HOLD_DRIFT_M = 25.0  # the USV holding position after the AUV is gone (docs/mission.md)
+MAX_NAV_RMSE_M = 1.0     # the AUV's USBL navigation against its truth, during its mission (issue 16)
+MAX_AUV_RMSE_M = 0.4     # the AUV's true cross-track from the first waypoint (thesis 0.23 m; measured 0.20 m)
 
 
 def run(scenario, out, *extra):
@@ -32,6 +34,10 @@ def test_default_mission_succeeds(tmp_path):
     assert m["target_error_m"] is not None and m["target_error_m"] < MAX_TARGET_ERROR_M, m
     assert m["min_clearance_m"] is not None and m["min_clearance_m"] > MIN_CLEARANCE_M, m
     assert m["usv_xte_samples"] > 0 and m["usv_rmse_m"] is not None
+    # the AUV navigated on USBL fixes (placed by the USV's relayed GPS and heading), fused in AuvNavigation
+    assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
+    assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < MAX_NAV_RMSE_M, m
+    assert m["auv_rmse_m"] is not None and m["auv_rmse_m"] < MAX_AUV_RMSE_M, m
     for f in ("map.png", "cross_track.png", "summary.md", "usv.bag", "auv.bag", "rviz_usv.png"):
         assert os.path.getsize(os.path.join(str(tmp_path / "default"), f)) > 0, f
     # one time base: the AUV's detection happened before the USV (which needed it) finished

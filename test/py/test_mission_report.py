@@ -78,20 +78,100 @@ def test_report_from_bags(tmp_path):
 
 
 def test_auv_tracking_counted_from_the_first_waypoint(tmp_path):
-    """The AUV's cross-track figures leave out the approach to its path (leg 1), reported apart (Table 4.4)."""
+    """The AUV's cross-track figures on the truth (its true position's distance from the active leg) leave out
+    the approach to its path (leg 1), reported apart (Table 4.4); the guidance's own figure (on the estimate) too."""
     import rosbag
     import rospy
+    from geometry_msgs.msg import PoseStamped
+    from nav_msgs.msg import Odometry, Path
     from offshore_gnc.msg import GuidanceStatus
 
     auv_bag = str(tmp_path / "auv.bag")
     with rosbag.Bag(auv_bag, "w") as b:
-        for i in range(30):
-            g = GuidanceStatus(mode=GuidanceStatus.MODE_FOLLOW_PATH, num_waypoints=6)
-            g.active_leg = 1 if i < 10 else 2 + i // 10
-            g.cross_track_error = 5.0 if i < 10 else (0.2 if i % 2 else -0.2)
-            b.write("/auv/guidance/status", g, rospy.Time(100 + i))
-        g = GuidanceStatus(mode=GuidanceStatus.MODE_STATION_KEEPING, active_leg=5, cross_track_error=9.0)
-        b.write("/auv/guidance/status", g, rospy.Time(131))  # not following: in neither figure
+        p = Path()
+        p.header.frame_id = "map_ned"
+        for n, e in ((0.0, 0.0), (0.0, 10.0), (20.0, 10.0), (20.0, 20.0)):  # legs: east, north, east
+            ps = PoseStamped()
+            ps.pose.position.x, ps.pose.position.y = n, e
+            p.poses.append(ps)
+        b.write("/auv/guidance/planned_path", p, rospy.Time(99))
+        for i in range(31):
+            t = rospy.Time(100 + i)
+            o = Odometry()
+            o.header.stamp = t
+            # leg 1 (i < 10): 5 m north of the eastward leg; leg 2 (north along east = 10): 0.2 m east of it
+            o.pose.pose.position.x = float(i) if i < 10 else 10.2        # ENU x = east
+            o.pose.pose.position.y = 5.0 if i < 10 else float(i - 10)    # ENU y = north
+            b.write("/auv/ground_truth/odom", o, t)
+            g = GuidanceStatus(mode=GuidanceStatus.MODE_FOLLOW_PATH, num_waypoints=4)
+            g.active_leg = 1 if i < 10 else 2
+            g.cross_track_error = 0.1  # the guidance's own error, on the estimate
+            if i < 30:
+                b.write("/auv/guidance/status", g, t)
+        g = GuidanceStatus(mode=GuidanceStatus.MODE_STATION_KEEPING, active_leg=2, cross_track_error=9.0)
+        b.write("/auv/guidance/status", g, rospy.Time(130))  # not following: in neither figure
     m = report.build(None, auv_bag, None, str(tmp_path / "report"))
     assert m["auv_xte_samples"] == 20 and m["auv_rmse_m"] == pytest.approx(0.2, abs=1e-4)
     assert m["auv_approach_samples"] == 10 and m["auv_approach_rmse_m"] == pytest.approx(5.0, abs=1e-4)
+    assert m["auv_rmse_estimate_m"] == pytest.approx(0.1, abs=1e-4)
+
+
+def test_auv_navigation_error_and_usbl_fixes(tmp_path):
+    """The AUV's navigation figures: its estimate (/auv/odom) against the truth interpolated at the estimate's
+    stamps (estimates outside the truth's span skipped), and the USBL fixes received and rejected."""
+    import rosbag
+    import rospy
+    from nav_msgs.msg import Odometry
+    from offshore_gnc.msg import UsblFix
+
+    def odom(t, north, east):
+        o = Odometry()
+        o.header.stamp = rospy.Time.from_sec(t)
+        o.header.frame_id = "map"
+        o.pose.pose.position.x = east   # ENU x = east
+        o.pose.pose.position.y = north  # ENU y = north
+        o.pose.pose.position.z = -5.0
+        o.pose.pose.orientation.w = 1.0
+        return o
+
+    auv_bag = str(tmp_path / "auv.bag")
+    with rosbag.Bag(auv_bag, "w") as b:
+        for i in range(11):  # truth: 1 m/s north from (0, 0), 100..110 s, at 1 Hz
+            b.write("/auv/ground_truth/odom", odom(100.0 + i, float(i), 0.0), rospy.Time(100 + i))
+        # estimate: 0.5 m east of the truth, between the truth's samples (interpolated) and on them; the two at
+        # 99.5 s and 110.5 s are outside the truth's span and do not count (3 m further north)
+        est = [(99.5, -0.5 + 3.0)] + [(100.0 + 0.25 * k, 0.25 * k) for k in range(41)] + [(110.5, 10.5 + 3.0)]
+        for t, north in est:
+            b.write("/auv/odom", odom(t, north, 0.5), rospy.Time.from_sec(t))
+        for k, quality in enumerate([UsblFix.QUALITY_OK, UsblFix.QUALITY_FIT_ERROR, UsblFix.QUALITY_OK,
+                                     UsblFix.QUALITY_STALE, UsblFix.QUALITY_OK]):
+            f = UsblFix(quality=quality)
+            f.header.stamp = rospy.Time(101 + 2 * k)
+            f.position_ned.x, f.position_ned.y, f.position_ned.z = 1.0 + 2 * k, 0.3, 5.0
+            f.latitude = f.longitude = float("nan")
+            b.write("/auv/usbl/fix", f, f.header.stamp)
+    out = tmp_path / "report"
+    m = report.build(None, auv_bag, None, str(out))
+    assert m["auv_nav_source"] == "usbl"
+    assert m["auv_nav_samples"] == 41
+    assert m["auv_nav_rmse_m"] == pytest.approx(0.5, abs=1e-9)
+    assert m["auv_nav_max_m"] == pytest.approx(0.5, abs=1e-9)
+    assert m["usbl_fixes_received"] == 5
+    assert m["usbl_fixes_rejected"] == 2
+    saved = json.load(open(out / "metrics.json"))
+    assert saved["auv_nav_rmse_m"] == pytest.approx(0.5) and saved["usbl_fixes_rejected"] == 2
+    summary = (out / "summary.md").read_text()
+    assert "| AUV navigation error, horizontal (estimate vs truth; usbl) | RMSE 0.500 m, max 0.500 m | |" in summary
+    assert "| USBL fixes | 5 received, 2 rejected | |" in summary
+    assert (out / "map.png").stat().st_size > 0
+
+    # only rejected fixes and no estimate: the INS, nothing to compare (unknown, not zero)
+    ins_bag = str(tmp_path / "ins.bag")
+    with rosbag.Bag(ins_bag, "w") as b:
+        for i in range(3):
+            b.write("/auv/ground_truth/odom", odom(100.0 + i, float(i), 0.0), rospy.Time(100 + i))
+        b.write("/auv/usbl/fix", UsblFix(quality=UsblFix.QUALITY_DEPTH), rospy.Time(101))
+    m = report.build(None, ins_bag, None, str(tmp_path / "report-ins"))
+    assert m["auv_nav_source"] == "ins"
+    assert m["auv_nav_rmse_m"] is None and m["auv_nav_max_m"] is None and m["auv_nav_samples"] == 0
+    assert m["usbl_fixes_received"] == 1 and m["usbl_fixes_rejected"] == 1

@@ -38,6 +38,12 @@ struct ActuatorCommand {
   bool active = false;  // false: the neutral command (why() says why)
 };
 
+// What the vehicle's safety supervisor asks of control (safety module's actions, mapped by the Control nodelet;
+// warn asks nothing): hold the position (and depth) where the override began, neutral actuators, or surface
+// (the AUV holds its horizontal position at depth 0; the USV goes neutral). It wins over guidance until cleared.
+enum class SafetyOverride : std::uint8_t { kNone, kHold, kNeutral, kSurface };
+const char* safetyOverrideName(SafetyOverride o);
+
 class ControlLoop {
  public:
   explicit ControlLoop(const ControlLoopParams& p);
@@ -47,6 +53,8 @@ class ControlLoop {
   void onReference(const MotionReference& r, double t);
   void onState(const VehicleState& s, double t);
   ActuatorCommand update(double t);
+  void setSafety(SafetyOverride o, const std::string& reason);
+  SafetyOverride safety() const { return safety_; }
 
   const std::string& why() const { return why_; }  // empty while controlling
   const Counters& counters() const { return counters_; }            // stale_input, bad_reference
@@ -61,6 +69,10 @@ class ControlLoop {
   VehicleState state_;
   double ref_t_ = 0.0, state_t_ = 0.0;
   bool have_ref_ = false, have_state_ = false;
+  SafetyOverride safety_ = SafetyOverride::kNone;
+  std::string safety_reason_;
+  bool have_hold_ = false;  // the hold point of the current override
+  MotionReference hold_;
   std::string why_ = "waiting for guidance status and odometry";
   Counters counters_;
 };

@@ -203,6 +203,31 @@ class Ahrs {
   std::normal_distribution<double> n_{0.0, 1.0};
 };
 
+// ---------------------------------------------------------------- DVL (Girona500)
+// A Doppler velocity log in bottom lock: the vehicle's velocity over ground in its body frame (FRD), white
+// Gaussian noise per axis. Mounted at the body origin (no lever arm); the simulated lake has no seabed model,
+// so bottom lock is never lost.
+struct DvlConfig {
+  double rate_hz = 5.0;
+  double velocity_sigma = 0.02;  // per axis [m/s]
+};
+struct DvlReading {
+  double t;
+  Eigen::Vector3d velocity;  // over ground, body FRD [m/s]
+  double velocity_sigma;     // [m/s]
+};
+class Dvl {
+ public:
+  Dvl(const DvlConfig& cfg, std::uint64_t seed);
+  DvlReading measure(const VehicleState& s);
+  const DvlConfig& config() const { return cfg_; }
+
+ private:
+  DvlConfig cfg_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> n_{0.0, 1.0};
+};
+
 // ---------------------------------------------------------------- AUV navigation estimate (simulation only)
 // Stands in for a DVL-aided INS (e.g. COLA2's navigator on Girona500): ground truth plus white noise and a
 // horizontal random-walk drift, the error such a filter shows between USBL fixes. Simulation only.

@@ -74,6 +74,7 @@ class AuvSimulation {
     SonarConfig sonar;
     DepthConfig depth;
     AhrsConfig ahrs;
+    DvlConfig dvl;  // used only by a Girona500 model (auv.type): the aColor has no DVL
     InsConfig ins;
     double odom_rate_hz = 20.0;
     models::AuvParams auv = models::AuvParams::girona500();
@@ -81,6 +82,7 @@ class AuvSimulation {
   struct Outputs {
     std::optional<AhrsReading> ahrs;
     std::optional<DepthReading> depth;
+    std::optional<DvlReading> dvl;     // Girona500 only (hasDvl())
     std::optional<VehicleState> odom;  // navigation estimate (INS stand-in)
     bool sonar = false;                // beam() holds a new beam
   };
@@ -94,6 +96,7 @@ class AuvSimulation {
   const VehicleState& state() const { return model_.state(); }
   const models::AuvModel& model() const { return model_; }
   const SonarBeamReading& beam() const { return beam_; }
+  bool hasDvl() const { return has_dvl_; }  // the vehicle carries a DVL: Girona500 yes, aColor no
   const Counters& counters() const { return counters_; }             // command conversion
   const Counters& modelCounters() const { return model_.counters(); }  // NaN / clamped commands
   double dt() const { return cfg_.dt; }
@@ -105,10 +108,12 @@ class AuvSimulation {
   Sonar sonar_;
   DepthSensor depth_;
   Ahrs ahrs_;
+  Dvl dvl_;
   InsEstimate ins_;
   SonarBeamReading beam_;
   Outputs out_;
-  long step_ = 0, sonar_every_, depth_every_, ahrs_every_, odom_every_;
+  long step_ = 0, sonar_every_, depth_every_, ahrs_every_, dvl_every_, odom_every_;
+  bool has_dvl_;
   Counters counters_;
 };
 

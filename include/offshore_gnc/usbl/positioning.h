@@ -67,6 +67,7 @@ class TimedBuffer {
     return std::nullopt;
   }
   bool empty() const { return samples_.empty(); }
+  double lastTime() const { return samples_.empty() ? -1e300 : samples_.back().first; }
 
  private:
   double horizon_;
@@ -77,6 +78,8 @@ struct QualityLimits {
   double max_fit_error = 2.0;      // [-], SeaTrac fit error above this is rejected
   double max_age_s = 2.0;          // fix older than this when processed
   double max_pose_gap_s = 0.5;     // USV GPS/heading must be this close to the fix time
+  double max_pose_wait_s = 1.5;    // a fix waits this long for the USV's GPS and heading to reach its time
+                                   // (they come over the relay, later than the reply); below max_age_s
   double max_depth_error_m = 3.0;  // |USBL depth - depth sensor|
   double max_depth_gap_s = 1.0;    // depth sensor sample this close to the fix time, else the gate is skipped
 };
@@ -98,6 +101,9 @@ class Positioner {
   void addUsvPosition(double t, const Eigen::Vector3d& ned) { usv_pos_.add(t, ned); }
   void addUsvAttitude(double t, const Eigen::Quaterniond& q_ned_frd) { usv_att_.add(t, q_ned_frd); }
   void addRemoteDepth(double t, double depth) { depth_.add(t, depth); }
+  // True when the USV's position and attitude have samples at or after t_reply (the fix can be placed by
+  // interpolation), or t_now is max_pose_wait_s past it (waiting longer would only make the fix stale).
+  bool ready(double t_reply, double t_now) const;
   // t_reply: when the reply reached the transceiver; t_now: processing time. Counts the outcome.
   FixResult process(const AcoFix& fix, double t_reply, double t_now);
   // accepted, rejected_<quality name>

@@ -81,3 +81,48 @@ TEST(ControlLoop, EachVehicleGetsItsOwnCommand) {
   p.input_timeout = -1.0;
   EXPECT_THROW(ControlLoop bad(p), ConfigError);
 }
+
+TEST(ControlLoop, SafetyNeutralWinsOverGuidanceUntilCleared) {
+  ControlLoop c(vehicle("usv"));
+  c.onReference(follow(0.5, 1.5), 0.0);
+  c.onState(VehicleState(), 0.0);
+  EXPECT_TRUE(c.update(0.1).active);
+  c.setSafety(SafetyOverride::kNeutral, "gps silent for 1.2 s");
+  const ActuatorCommand n = c.update(0.2);
+  EXPECT_FALSE(n.active);
+  EXPECT_EQ(n.joystick.surge, 0.0);
+  EXPECT_EQ(n.joystick.yaw, 0.0);
+  EXPECT_EQ(c.why(), "safety neutral: gps silent for 1.2 s");
+  c.setSafety(SafetyOverride::kSurface, "link lost");  // a USV cannot surface: neutral too
+  EXPECT_FALSE(c.update(0.3).active);
+  c.setSafety(SafetyOverride::kNone, "");
+  const ActuatorCommand back = c.update(0.4);
+  EXPECT_TRUE(back.active);
+  EXPECT_TRUE(c.why().empty());
+  EXPECT_GT(back.joystick.surge, 0.0);
+}
+
+TEST(ControlLoop, SafetySurfaceBringsTheAuvUpWhereItIsAndHoldHoldsItsDepth) {
+  ControlLoop c(vehicle("girona500"));
+  c.onReference(follow(0.0, 0.3), 0.0);
+  VehicleState s;
+  s.position = {10.0, -4.0, 5.0};
+  c.onState(s, 0.0);
+  c.setSafety(SafetyOverride::kSurface, "navigation silent");
+  ActuatorCommand up = c.update(0.1);
+  EXPECT_TRUE(up.active);
+  EXPECT_LT(up.thrusters.tau(2), 0.0);           // heave force up (z down): towards depth 0
+  EXPECT_NEAR(up.thrusters.tau(0), 0.0, 1e-9);   // no surge: it holds the point where the override began
+  s.position = {12.0, -4.0, 4.0};                // it drifted 2 m north meanwhile
+  c.onState(s, 0.2);
+  up = c.update(0.3);
+  EXPECT_LT(up.thrusters.tau(0), 0.0);           // pushed back south to the hold point
+  ControlLoop h(vehicle("girona500"));
+  h.onReference(follow(0.0, 0.3), 0.0);
+  h.onState(s, 0.0);
+  h.setSafety(SafetyOverride::kHold, "sonar silent");  // hold: where it is, at its present depth
+  const ActuatorCommand hold = h.update(0.1);
+  EXPECT_TRUE(hold.active);
+  EXPECT_NEAR(hold.thrusters.tau(2), 0.0, 1e-9);
+  EXPECT_NEAR(hold.thrusters.tau(0), 0.0, 1e-9);  // no surge although guidance asks 0.3 m/s
+}

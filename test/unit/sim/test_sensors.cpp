@@ -1,4 +1,5 @@
-// Sensor simulators: geometry of returns, NaN for no return, sonar echo bins, noise-free readings, seeds.
+// Sensor simulators: geometry of returns, NaN for no return, sonar echo bins, noise-free readings, seeds, the DVL's
+// noise and rate.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/sim/sensors.h"
+#include "offshore_gnc/sim/simulation.h"
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::sim;
@@ -310,4 +312,94 @@ TEST(InsEstimate, DriftGrowsLikeARandomWalk) {
   // expected |drift|^2 = 2 * 0.02^2 * 3600 = 2.88 m^2; accept a wide band for one realisation
   EXPECT_GT(sum_sq, 0.01);
   EXPECT_LT(sum_sq, 30.0);
+}
+
+namespace {
+// Sample mean and SD (n - 1) of each body axis of n DVL readings of one state.
+void dvlStats(Dvl& dvl, const VehicleState& s, int n, Eigen::Vector3d& mean, Eigen::Vector3d& sd) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sum_sq = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d e = dvl.measure(s).velocity - s.velocity;
+    sum += e;
+    sum_sq += e.cwiseProduct(e);
+  }
+  mean = sum / n;
+  sd = ((sum_sq - n * mean.cwiseProduct(mean)) / (n - 1)).cwiseSqrt();
+}
+}  // namespace
+
+TEST(Dvl, BodyVelocityOverGroundWithItsNoise) {
+  VehicleState s;
+  s.t = 12.5;
+  s.yaw = deg2rad(60.0);  // body frame: the heading does not enter
+  s.velocity = {1.2, -0.3, 0.1};
+  const int n = 40000;
+  for (double sigma : {0.02, 0.1}) {
+    DvlConfig c;
+    c.velocity_sigma = sigma;
+    Dvl dvl(c, 11);
+    const DvlReading r = dvl.measure(s);
+    EXPECT_EQ(r.t, 12.5);
+    EXPECT_EQ(r.velocity_sigma, sigma);
+    Eigen::Vector3d mean, sd;
+    dvlStats(dvl, s, n, mean, sd);
+    for (int k = 0; k < 3; ++k) {
+      // standard errors: mean sigma / sqrt(n) (0.5 % of sigma), SD sigma / sqrt(2 n) (0.35 %)
+      EXPECT_NEAR(mean[k], 0.0, 5 * sigma / std::sqrt(n)) << "axis " << k << ", sigma " << sigma;
+      EXPECT_NEAR(sd[k], sigma, 0.02 * sigma) << "axis " << k << ", sigma " << sigma;
+    }
+  }
+  EXPECT_EQ(DvlConfig{}.velocity_sigma, 0.02);  // the defaults: 0.02 m/s at 5 Hz
+  EXPECT_EQ(DvlConfig{}.rate_hz, 5.0);
+  // noise-free: exactly the true body velocity
+  DvlConfig quiet;
+  quiet.velocity_sigma = 0.0;
+  Dvl exact(quiet, 1);
+  EXPECT_EQ(exact.measure(s).velocity, s.velocity);
+  // one seed, one noise sequence
+  Dvl a(DvlConfig{}, 5), b(DvlConfig{}, 5), other(DvlConfig{}, 6);
+  const Eigen::Vector3d va = a.measure(s).velocity;
+  EXPECT_EQ(va, b.measure(s).velocity);
+  EXPECT_NE(va, other.measure(s).velocity);
+  DvlConfig bad;
+  bad.velocity_sigma = -0.1;
+  EXPECT_THROW(Dvl(bad, 1), ConfigError);
+  bad = DvlConfig{};
+  bad.rate_hz = 0.0;
+  EXPECT_THROW(Dvl(bad, 1), ConfigError);
+}
+
+TEST(Dvl, AtItsRateOnTheGirona500AndNotOnTheAColor) {
+  const Scenario sc;  // open water at the default origin
+  AuvSimulation::Config cfg;
+  ASSERT_EQ(cfg.dvl.rate_hz, 5.0);
+  AuvSimulation g(sc, cfg);
+  EXPECT_TRUE(g.hasDvl());
+  EXPECT_TRUE(g.setThrusters({-1, -1, 0, 0, 0}));  // under way: the readings follow the true velocity
+  int dvl = 0;
+  double last_t = 0.0;
+  for (int i = 0; i < 1000; ++i) {  // 10 s at dt 0.01
+    const auto& o = g.step();
+    if (!o.dvl) continue;
+    ++dvl;
+    EXPECT_NEAR(o.dvl->t - last_t, 0.2, 1e-9);
+    last_t = o.dvl->t;
+    EXPECT_EQ(o.dvl->t, g.state().t);
+    EXPECT_LT((o.dvl->velocity - g.state().velocity).norm(), 6 * cfg.dvl.velocity_sigma);
+  }
+  EXPECT_EQ(dvl, 50);
+  EXPECT_GT(g.state().velocity.x(), 0.2);
+
+  cfg.dvl.rate_hz = 2.0;  // configurable
+  AuvSimulation slow(sc, cfg);
+  dvl = 0;
+  for (int i = 0; i < 1000; ++i) dvl += slow.step().dvl.has_value();
+  EXPECT_EQ(dvl, 20);
+
+  cfg.auv = models::AuvParams::aColor();  // no DVL on the aColor
+  AuvSimulation a(sc, cfg);
+  EXPECT_FALSE(a.hasDvl());
+  dvl = 0;
+  for (int i = 0; i < 1000; ++i) dvl += a.step().dvl.has_value();
+  EXPECT_EQ(dvl, 0);
 }

@@ -1,0 +1,123 @@
+#pragma once
+// AUV state estimation: a linear Kalman filter in local NED (x north, y east, z down) on position and NED
+// velocity, constant-velocity model. The absolute position comes from SeaTrac USBL fixes computed on the USV
+// (placed by its GPS and heading) and relayed to the AUV, so they arrive 0.5-2 s after they were taken: the filter
+// keeps the last history_s seconds of inputs with the state after each, rolls back to the fix's stamp, applies it
+// and replays what came later. Velocity from the DVL (Girona500) or, without one (aColor), from the commanded
+// surge; depth from the pressure sensor; yaw from the AHRS, taken as known. ROS-free; a nodelet wraps it.
+#include <Eigen/Dense>
+
+#include <deque>
+
+#include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
+
+namespace offshore_gnc {
+namespace navigation {
+
+struct AuvNavigatorConfig {
+  double history_s = 10.0;            // inputs kept for delayed fixes (waits for the relayed USV pose) [s]
+  double fix_timeout = 10.0;          // no accepted fix for longer: kFixLost [s]
+  double heading_timeout = 1.0;       // no heading for longer: kNoHeading, DVL and commands unusable [s]
+  double dvl_timeout = 1.0;           // no DVL sample for longer: the commanded-speed model takes over [s]
+  double gate_chi2 = 16.27;           // Mahalanobis gate on fixes (chi-square, 3 dof, 99.9 %)
+  int max_rejects_in_row = 5;         // after this many gated fixes in a row the next gated one re-initialises
+  double accel_psd_h = 0.05;          // white-acceleration spectral density, north and east [m^2/s^3]
+  double accel_psd_v = 0.01;          // the same, down [m^2/s^3]
+  double position_psd = 0.01;         // horizontal position random walk: unmodelled DVL/heading errors [m^2/s]
+  double dvl_sigma = 0.03;            // DVL velocity noise, each axis [m/s]
+  double depth_sigma = 0.05;          // depth sensor noise [m]
+  double cmd_sigma = 0.3;             // commanded-speed model error, each horizontal axis, per command [m/s]
+  double init_velocity_sigma = 1.0;   // velocity uncertainty at (re-)initialisation [m/s]
+  static const ParamTable<AuvNavigatorConfig>& table();
+};
+
+enum class NavStatus {
+  kNoFix,      // never initialised: the estimate means nothing
+  kOk,
+  kFixLost,    // no fix accepted for fix_timeout: dead reckoning, the covariance grows
+  kNoHeading,  // no heading for heading_timeout: velocity inputs cannot be rotated into NED
+};
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+struct AuvNavEstimate {
+  double t = 0.0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // NED [m]
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // NED [m/s]
+  double yaw = 0.0, yaw_rate = 0.0;                    // from the AHRS [rad], [rad/s]
+  Matrix6d covariance = Matrix6d::Identity();          // of [position; velocity]
+  NavStatus status = NavStatus::kNoFix;
+};
+
+class AuvNavigator {
+ public:
+  explicit AuvNavigator(const AuvNavigatorConfig& cfg = AuvNavigatorConfig{});  // throws ConfigError
+
+  // Every input returns false when refused (counted). Inputs may come out of order within history_s; one older
+  // than that is refused (a fix, "fix_too_old") or taken as the clock going back (any other: "time_reset").
+  // USBL fix taken at t_taken (NED position, its covariance). True when it went into the state.
+  bool usblFix(double t_taken, const Eigen::Vector3d& ned, const Eigen::Matrix3d& cov);
+  bool depth(double t, double z);                               // z down [m]
+  bool heading(double t, double yaw, double yaw_rate);          // NED yaw [rad], rate [rad/s]
+  bool dvl(double t, const Eigen::Vector3d& v_body);            // velocity over ground, body FRD [m/s]
+  bool commandedSpeed(double t, double surge);                  // commanded surge [m/s] (no DVL)
+  bool predict(double t);                                       // propagate the filter to t
+  // The estimate at t (extrapolated from the latest state, or from the history for an earlier t); const.
+  AuvNavEstimate estimate(double t) const;
+
+  // "fix_accepted", "fix_rejected_gate", "fix_too_old", "bad_input", "reinit", "time_reset",
+  // "velocity_without_heading". Each input is counted once, when it arrives, not again when replayed.
+  const Counters& counters() const { return counters_; }
+  const AuvNavigatorConfig& config() const { return cfg_; }
+
+ private:
+  struct Filter {
+    double t = -1e300;  // time of x and P
+    bool initialised = false;
+    Vector6d x = Vector6d::Zero();
+    Matrix6d P = Matrix6d::Identity();
+    double yaw = 0.0, yaw_rate = 0.0;
+    double heading_t = -1e300, dvl_t = -1e300, fix_t = -1e300;
+    int rejects_in_row = 0;
+  };
+  enum class Kind { kFix, kDepth, kHeading, kDvl, kCommand, kPredict };
+  struct Input {
+    Kind kind;
+    double t;
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();  // fix position, DVL velocity
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();  // fix covariance
+    double a = 0.0, b = 0.0;                      // depth, yaw / yaw rate, surge
+  };
+  struct Entry {
+    Input in;
+    Filter after;
+  };
+
+  bool submit(const Input& in);
+  bool apply(Filter& f, const Input& in, bool first);
+  bool applyFix(Filter& f, const Input& in, bool first);
+  void propagate(Filter& f, double t) const;
+  template <int M>
+  void update(Filter& f, const Eigen::Matrix<double, M, 6>& H, const Eigen::Matrix<double, M, 1>& innovation,
+              const Eigen::Matrix<double, M, M>& R) const;
+  bool headingAt(const Filter& f, double t, double& yaw) const;
+  void count(bool first, const char* name) {
+    if (first) counters_.increment(name);
+  }
+  bool refuse(bool first, const char* name) {  // count and return false
+    count(first, name);
+    return false;
+  }
+
+  AuvNavigatorConfig cfg_;
+  Filter state_;  // after the newest entry (== history_.back().after, or base_ when the history is empty)
+  Filter base_;   // before the oldest entry
+  std::deque<Entry> history_;
+  double latest_t_ = -1e300;  // newest input stamp seen
+  Counters counters_;
+};
+
+}  // namespace navigation
+}  // namespace offshore_gnc
