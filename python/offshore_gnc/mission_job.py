@@ -62,27 +62,11 @@ def relay_configs(folder, speedup):
     return files
 
 
-def vehicle_configs(scenario, auv_model, folder):
-    """The vehicles' configs for this run, on the scenario's local origin: in simulation the scenario places the
-    world, so a vehicle config written for another site (its `origin`) gets a copy in the run's folder with the
-    scenario's origin instead, said on the console, and nothing runs on two origins. Returns vehicle -> file."""
-    import yaml
-    files = {"usv": os.path.join(REPO, "config", "usv.yaml"),
-             "auv": os.path.join(REPO, "config", "auv_%s.yaml" % auv_model)}
-    with open(scenario) as f:
-        origin = (yaml.safe_load(f) or {}).get("origin")
-    for v, path in files.items():
-        with open(path) as f:
-            c = yaml.safe_load(f)
-        if not origin or c.get("origin") == origin:
-            continue
-        print("[mission] %s: origin %s replaced by the scenario's %s for this run" % (
-            os.path.relpath(path, REPO), c.get("origin"), origin), flush=True)
-        c["origin"] = origin
-        files[v] = os.path.join(folder, "%s-config.yaml" % v)
-        with open(files[v], "w") as f:
-            yaml.safe_dump(c, f, allow_unicode=True)
-    return files
+def vehicle_configs(auv_model):
+    """The vehicles' configs the stacks get (the launch files' defaults); their origins must be the scenario's,
+    which scenario_check holds them to before anything starts. Returns vehicle -> file."""
+    return {"usv": os.path.join(REPO, "config", "usv.yaml"),
+            "auv": os.path.join(REPO, "config", "auv_%s.yaml" % auv_model)}
 
 
 def parse_args(argv=None):
@@ -301,7 +285,7 @@ def run(a):
     out = os.path.abspath(a.out or os.path.join(REPO, "reports", "%s-%s" % (
         name, datetime.datetime.now().strftime("%Y%m%d-%H%M%S"))))
     os.makedirs(out, exist_ok=True)
-    configs = vehicle_configs(a.scenario, a.auv_model, out)
+    configs = vehicle_configs(a.auv_model)
     # the check again with the configs the stacks get: two origins apart would offset every position
     scenario_check.load(a.scenario, [configs["usv"], configs["auv"]])
     t0 = time.time()

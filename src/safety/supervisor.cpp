@@ -135,7 +135,7 @@ SupervisorConfig usvDefaults() {
   auto& r = c.rules;
   r.gps_timeout = r.navigation_timeout = rule(0.0, 2.0, "neutral", true);  // no position: DP impossible
   r.lidar_timeout = rule(0.0, 2.0, "hold", true);                          // blind to obstacles: stop
-  r.link_timeout = rule(0.0, 5.0, "hold", true);
+  r.link_timeout = rule(0.0, 5.0, "warn", true);  // the USV mission itself holds when its peer is lost
   r.command_timeout = rule(0.0, 2.0, "neutral", true);
   r.region = rule(1.0, 5.0, "hold", false);  // OpRegion: a breach latches until the operator resets
   r.collision = rule(0.0, 3.0, "neutral", true);
