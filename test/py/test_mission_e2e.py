@@ -51,7 +51,7 @@ def test_default_mission_succeeds(tmp_path):
 
 
 def test_a_scenario_on_another_origin_is_refused_naming_both(tmp_path):
-    """The default scenario moved to the Bay of Palma, 2,700 km from the vehicle configs' Pyhajarvi origin: every
+    """The default scenario moved to the Bay of Palma, 2,830 km from the vehicle configs' Pyhajarvi origin: every
     position would be offset by that, so the job refuses before starting anything, naming both origins."""
     text = open(os.path.join(REPO, "config", "scenarios", "pyhajarvi.yaml")).read()
     moved = text.replace("origin: {latitude: 61.4507, longitude: 23.7270", "origin: {latitude: 39.5500, longitude: 2.6300")
