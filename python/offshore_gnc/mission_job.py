@@ -91,6 +91,11 @@ def parse_args(argv=None):
                     help="rviz (USV configuration) under Xvfb during the mission: rviz_usv.png in the report")
     ap.add_argument("--kill", metavar="VEHICLE@SIM_S", default=None,
                     help="fault injection: SIGKILL one vehicle's whole stack at this simulated time, e.g. auv@120")
+    ap.add_argument("--fault", action="append", default=[], metavar="NAME@START_S[+DURATION_S]",
+                    help="fault injection in the simulators (repeatable), e.g. usbl@150+60 (no USBL reply for 60 s "
+                         "from sim 150 s) or gps@200+10; NAME is one of gps, lidar (USV), sonar, depth, dvl, usbl "
+                         "(AUV); without a duration it lasts to the end. The report lists each fault and the "
+                         "safety supervisor's response (docs/safety.md)")
     ap.add_argument("--after-kill", type=float, default=60.0,
                     help="simulated seconds to keep watching the surviving vehicle after a stack died (default 60)")
     a = ap.parse_args(argv)
@@ -288,12 +293,14 @@ def run(a):
     configs = vehicle_configs(a.auv_model)
     # the check again with the configs the stacks get: two origins apart would offset every position
     scenario_check.load(a.scenario, [configs["usv"], configs["auv"]])
+    fault_plan = " ".join(a.fault)
+    planned = scenario_check.faults(a.scenario, fault_plan)  # refused before start when it does not parse
     t0 = time.time()
     outcome = {"success": False, "reason": "not started"}
     with MasterSet(["usv", "auv"], log_dir=os.path.join(out, "logs")) as ms:
         lockstep = not a.free_running
         common = {"sim": "true", "scenario": os.path.abspath(a.scenario), "rate": str(a.rate), "record": "true",
-                  "lockstep": str(lockstep).lower()}
+                  "lockstep": str(lockstep).lower(), "faults": fault_plan}
         relay = relay_configs(os.path.join(out, "logs"), a.rate)  # a free link port: missions side by side never meet
         launches = {
             "usv": ms["usv"].roslaunch(os.path.join(REPO, "launch", "usv.launch"), dict(
@@ -312,6 +319,10 @@ def run(a):
         clock = SharedClock(mons) if lockstep else None
         shots = Screenshots(ms["usv"], out) if a.screenshot else None
         print("[mission] scenario %s, report folder %s" % (a.scenario, out), flush=True)
+        for f in planned:
+            print("[mission] fault injection: %s on the %s from sim %g s %s" % (
+                f["name"], f["vehicle"], f["start_s"], "to the end" if f["end_s"] is None else "to %g s" % f["end_s"]),
+                flush=True)
         last_print = 0.0
         died = {}  # vehicle -> simulated time when its stack was found dead
         while True:
@@ -376,7 +387,7 @@ def run(a):
                 print("[mission] could not reindex %s.active: %s" % (bag, r.stderr.strip()[-300:]), flush=True)
             shutil.rmtree(fixed, ignore_errors=True)
     m = report.build(os.path.join(out, "usv.bag"), os.path.join(out, "auv.bag"), a.scenario, out,
-                     wall_time_s=round(wall, 2), outcome=outcome)
+                     wall_time_s=round(wall, 2), outcome=outcome, planned_faults=planned)
     print("[mission] %s: %s" % ("SUCCESS" if m["success"] else "FAILED", outcome["reason"]))
     print("[mission] metrics: " + ", ".join("%s=%s" % (k, m[k]) for k in (
         "usv_rmse_m", "auv_rmse_m", "target_error_m", "min_clearance_m", "auv_nav_source", "auv_nav_rmse_m",

@@ -146,21 +146,76 @@ def _drift_after(track, t0):
     return max(math.hypot(n - after[0][1], e - after[0][2]) for _, n, e, _ in after)
 
 
-def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=None):
+NAV_RECOVERED_M = 1.5  # issue 16: the navigation error after a USBL outage is back under this
+
+
+def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_status=()):
+    """One entry per planned fault (mission_job --fault): when the simulator announced it (/<v>/sim/faults), the
+    safety supervisor's activations on that vehicle from its start to 10 s after its end (rule, action, delay)
+    and when each released. For a USBL outage also the navigation: largest error and position sigma while it
+    lasted, the filter's statuses, and how long after it the error stayed under NAV_RECOVERED_M.
+    events/transitions: {vehicle: [(t, msg)]}; nav_err, nav_sigma: [(t, m)]; nav_status: [(t, str)]."""
+    reports = []
+    for f in planned:
+        v, start = f["vehicle"], f["start_s"]
+        end = f["end_s"] if f["end_s"] is not None else float("inf")
+        ev = events.get(v, [])
+        on = next((_stamp(t, m) for t, m in ev if m.name == f["name"] and m.active and _stamp(t, m) >= start - 0.5),
+                  None)
+        off = next((_stamp(t, m) for t, m in ev if m.name == f["name"] and not m.active and on is not None
+                    and _stamp(t, m) > on), None)
+        responses = []
+        for t, m in transitions.get(v, []):
+            ts = _stamp(t, m)
+            if on is None or ts < on or ts > end + 10.0:
+                continue
+            if m.active_rule in m.active_rules:
+                release = next((_stamp(t2, m2) for t2, m2 in transitions.get(v, []) if _stamp(t2, m2) > ts and
+                                m2.active_rule == m.active_rule and m.active_rule not in m2.active_rules), None)
+                responses.append({"rule": m.active_rule, "action": m.action_name if m.action_name else "",
+                                  "after_s": round(ts - on, 2),
+                                  "released_s": round(release, 2) if release is not None else None,
+                                  "reason": m.reason})
+        r = {"name": f["name"], "vehicle": v, "start_s": start, "end_s": f["end_s"],
+             "injected_s": round(on, 2) if on is not None else None,
+             "ended_s": round(off, 2) if off is not None else None, "responses": responses}
+        if f["name"] == "usbl" and on is not None:
+            during = [e for t, e in nav_err if on <= t < end]
+            sig = [e for t, e in nav_sigma if on <= t < end]
+            sig_before = [e for t, e in nav_sigma if on - 10.0 <= t < on]
+            after = [(t, e) for t, e in nav_err if t >= end]
+            bad = [t for t, e in after if e >= NAV_RECOVERED_M]
+            r.update({
+                "nav_error_max_m": round(max(during), 3) if during else None,
+                "nav_sigma_before_m": round(max(sig_before), 3) if sig_before else None,
+                "nav_sigma_max_m": round(max(sig), 3) if sig else None,
+                "nav_statuses": sorted({st for t, st in nav_status if on <= t < end + 5.0}),
+                # from the outage's end until the error stays under the bound (0: it never left it)
+                "nav_recovered_after_s": (round(max(bad) - end, 2) if bad else 0.0) if after else None,
+            })
+        reports.append(r)
+    return reports
+
+
+def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=None, planned_faults=()):
     os.makedirs(out, exist_ok=True)
     sc = yaml.safe_load(open(scenario)) if scenario else {}
     u = read_bag(usv_bag, ["/usv/ground_truth/odom", "/usv/guidance/path", "/usv/guidance/planned_path",
                            "/usv/guidance/status",
-                           "/usv/guidance/safety_boxes", "/usv/obstacles", "/target", "/usv/mission/status"])
+                           "/usv/guidance/safety_boxes", "/usv/obstacles", "/target", "/usv/mission/status",
+                           "/usv/sim/faults", "/usv/safety/transitions"])
     a = read_bag(auv_bag, ["/auv/ground_truth/odom", "/auv/guidance/path", "/auv/guidance/planned_path",
                            "/auv/guidance/status",
-                           "/auv/sonar/targets", "/target", "/auv/mission/status", "/auv/odom", "/auv/usbl/fix"])
+                           "/auv/sonar/targets", "/target", "/auv/mission/status", "/auv/odom", "/auv/usbl/fix",
+                           "/auv/sim/faults", "/auv/safety/transitions", "/auv/navigation/status"])
     usv_track = odom_track_ned(u["/usv/ground_truth/odom"])
     auv_track = odom_track_ned(a["/auv/ground_truth/odom"])
     # the AUV's navigation: its estimate against its truth, each at its header stamp; the fixes it received
     auv_est_track = odom_track_ned(a["/auv/odom"])
     nav_err = nav_error([(_stamp(t, m),) + p[1:] for (t, m), p in zip(a["/auv/odom"], auv_est_track)],
                         [(_stamp(t, m),) + p[1:] for (t, m), p in zip(a["/auv/ground_truth/odom"], auv_track)])
+    # horizontal position sigma the estimate reports (the larger of north and east)
+    nav_sigma = [(_stamp(t, m), math.sqrt(max(m.pose.covariance[0], m.pose.covariance[7], 0.0))) for t, m in a["/auv/odom"]]
     fixes = [m for _, m in a["/auv/usbl/fix"]]
     fixes_ok = [m for m in fixes if m.quality == QUALITY_OK]
     usv_xte = [(t, m.cross_track_error) for t, m in u["/usv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
@@ -177,6 +232,11 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     auv_end_t = next((t for t, m in a["/auv/mission/status"] if m.finished), float("inf"))
     nav_during = [e for t, e in nav_err if t <= auv_end_t]
     nav_after = [e for t, e in nav_err if t > auv_end_t]
+    # a USBL outage's recovery is judged during the AUV's mission, not in the surface drift after it
+    faults = fault_reports(list(planned_faults), {"usv": u["/usv/sim/faults"], "auv": a["/auv/sim/faults"]},
+                           {"usv": u["/usv/safety/transitions"], "auv": a["/auv/safety/transitions"]},
+                           [(t, e) for t, e in nav_err if t <= auv_end_t], nav_sigma,
+                           [(t, m.data) for t, m in a["/auv/navigation/status"]])
 
     targets_true = sc.get("targets", []) or []
     detected = None
@@ -227,6 +287,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         # how far the surviving vehicle moved after the other's stack died (safe behaviour = holding position)
         "survivor_drift_m": _drift_after(usv_track if "auv" in died else auv_track, min(died.values()))
         if len(died) == 1 else float("nan"),
+        "faults": faults,
         "usv_final_phase": last_usv.phase if last_usv else None,
         "auv_final_phase": last_auv.phase if last_auv else None,
         "thesis": THESIS,
@@ -336,6 +397,16 @@ def _summary(out, m, scenario):
     if m["stacks_died"]:
         lines += ["Stacks that died: %s (simulated time [s]); the other vehicle moved at most %s afterwards." % (
             ", ".join("%s at %s" % kv for kv in m["stacks_died"].items()), _fmt(m["survivor_drift_m"], " m")), ""]
+    for f in m.get("faults", []):
+        resp = "; ".join("%s -> %s after %.1f s%s" % (r["rule"], r["action"], r["after_s"], "" if r["released_s"] is None
+                                                       else ", released at %.1f s" % r["released_s"])
+                         for r in f["responses"]) or "no safety rule fired"
+        lines += ["Fault `%s` (%s) injected at %s s, ended at %s s: %s.%s" % (
+            f["name"], f["vehicle"].upper(), _fmt(f["injected_s"]), _fmt(f["ended_s"]), resp,
+            "" if "nav_error_max_m" not in f else
+            " Navigation: error up to %s, sigma %s -> %s, statuses %s, back under %.1f m %s s after." % (
+                _fmt(f["nav_error_max_m"], " m"), _fmt(f["nav_sigma_before_m"], " m"), _fmt(f["nav_sigma_max_m"], " m"),
+                ", ".join(f["nav_statuses"]), NAV_RECOVERED_M, _fmt(f["nav_recovered_after_s"]))), ""]
     lines += ["![map](map.png)", "", "![cross-track error](cross_track.png)", ""]
     if "rviz_pixels" in m:
         lines += ["![rviz, USV configuration](rviz_usv.png)", ""]

@@ -1,5 +1,6 @@
 """Scenario files are validated by the simulator's own loader (C++, `scenario_check` tool) before anything
 starts, so that a typo or impossible geometry is refused with a message naming the key."""
+import json
 import os
 import subprocess
 
@@ -10,18 +11,30 @@ class ScenarioError(Exception):
     pass
 
 
-def load(path, vehicle_configs=()):
-    """Validated scenario as a dict; raises ScenarioError naming the problem. With vehicle configs, their
-    local origins must be the scenario's (the tool names both when they are not)."""
+def _check(path, args):
+    """The tool's JSON summary line; raises ScenarioError with its message."""
     if not os.path.isfile(path):
         raise ScenarioError("scenario file not found: %s" % path)
     try:
-        r = subprocess.run(["rosrun", "offshore_gnc", "scenario_check", path] + list(vehicle_configs),
-                           stdout=subprocess.PIPE,
+        r = subprocess.run(["rosrun", "offshore_gnc", "scenario_check", path] + list(args), stdout=subprocess.PIPE,
                            stderr=subprocess.STDOUT, timeout=60, text=True)
     except FileNotFoundError:
         raise ScenarioError("rosrun not found: source the workspace (devel/setup.bash) first")
     if r.returncode != 0:
         raise ScenarioError("%s: %s" % (path, r.stdout.strip()))
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def load(path, vehicle_configs=()):
+    """Validated scenario as a dict; raises ScenarioError naming the problem. With vehicle configs, their
+    local origins must be the scenario's (the tool names both when they are not)."""
+    _check(path, vehicle_configs)
     with open(path) as f:
         return yaml.safe_load(f) or {}
+
+
+def faults(path, plan):
+    """The fault plan (offshore_gnc::FaultPlan text, e.g. "usbl@150+60 gps@200+10") checked by the simulators'
+    own parser: a list of {name, vehicle, start_s, end_s (None: to the end)}; raises ScenarioError naming the bad
+    item."""
+    return _check(path, ["--faults", plan])["faults"] if plan.strip() else []

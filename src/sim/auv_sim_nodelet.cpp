@@ -18,6 +18,7 @@
 #include "offshore_gnc/SonarBeam.h"
 #include "offshore_gnc/ThrusterSetpoints.h"
 #include "offshore_gnc/ros/diagnostics.h"
+#include "offshore_gnc/ros/faults.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/sim/simulation.h"
 #include "ros_sim.h"
@@ -60,6 +61,8 @@ class AuvSimNodelet : public nodelet::Nodelet {
       const std::string params = p.text("model_params", "");  // config/models/*.yaml (models module)
       if (!params.empty()) cfg.auv = models::loadAuvParams(params);
       base_frame_ = p.text("base_frame", "auv/base_link");
+      faults_ = std::make_unique<ros_util::FaultInjector>(nh, "auv", std::vector<std::string>{"sonar", "depth", "dvl"});
+      cfg.faults = faults_->plan();
       sim_ = std::make_unique<sim::AuvSimulation>(scenario_, cfg);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
@@ -109,6 +112,7 @@ class AuvSimNodelet : public nodelet::Nodelet {
 
   double step() {
     const auto& out = sim_->step();
+    faults_->update(sim_->state().t);
     const auto& s = sim_->state();
     const ros::Time stamp(s.t);
     if (++truth_count_ % 5 == 0) truth_pub_.publish(ros_util::toOdometry(s, "map", base_frame_));
@@ -175,6 +179,7 @@ class AuvSimNodelet : public nodelet::Nodelet {
   sim::Scenario scenario_;
   std::unique_ptr<sim::AuvSimulation> sim_;
   std::unique_ptr<sim_ros::SimRunner> runner_;
+  std::unique_ptr<ros_util::FaultInjector> faults_;
   std::string base_frame_;
   unsigned long truth_count_ = 0;
   bool odom_on_ = true;

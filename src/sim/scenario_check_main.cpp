@@ -1,13 +1,16 @@
-// scenario_check FILE [VEHICLE_CONFIG...]: validates a scenario before anything starts (the simulator's strict
-// loader plus the mission section) and, given the vehicles' configs, that they share its local origin: the
-// simulators place the world by the scenario's origin, the navigation by the vehicle's, so two origins apart would
-// put every target off by their distance. Prints a one-line JSON summary, or the error and exits 2.
+// scenario_check FILE [--faults PLAN] [VEHICLE_CONFIG...]: validates a scenario before anything starts (the
+// simulator's strict loader plus the mission section) and, given the vehicles' configs, that they share its local
+// origin: the simulators place the world by the scenario's origin, the navigation by the vehicle's, so two origins
+// apart would put every target off by their distance. --faults checks a fault plan (offshore_gnc::FaultPlan) and
+// lists its faults with their vehicles. Prints a one-line JSON summary, or the error and exits 2.
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <string>
 
+#include "offshore_gnc/common/faults.h"
 #include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/geo/geo.h"
@@ -56,15 +59,31 @@ void checkOrigin(const sim::Scenario& s, const std::string& scenario, const std:
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: scenario_check FILE.yaml [VEHICLE_CONFIG.yaml...]\n");
+    std::fprintf(stderr, "usage: scenario_check FILE.yaml [--faults PLAN] [VEHICLE_CONFIG.yaml...]\n");
     return 2;
   }
   try {
     const sim::Scenario s = sim::loadScenario(argv[1]);
     checkMission(argv[1]);
-    for (int i = 2; i < argc; ++i) checkOrigin(s, argv[1], argv[i]);
-    std::printf("{\"scenario\": \"%s\", \"obstacles\": %zu, \"targets\": %zu, \"ok\": true}\n", s.name.c_str(),
-                s.world.buoys.size() + s.world.vessels.size(), s.world.targets.size());
+    FaultPlan faults;
+    for (int i = 2; i < argc; ++i) {
+      if (std::string(argv[i]) == "--faults") {
+        if (i + 1 >= argc) throw ConfigError("--faults needs a plan, e.g. --faults 'usbl@150+60'");
+        faults = FaultPlan::parse(argv[++i]);
+      } else {
+        checkOrigin(s, argv[1], argv[i]);
+      }
+    }
+    std::string listed;
+    for (const auto& f : faults.faults()) {
+      char one[160];
+      std::snprintf(one, sizeof one, "%s{\"name\": \"%s\", \"vehicle\": \"%s\", \"start_s\": %g, \"end_s\": %s}",
+                    listed.empty() ? "" : ", ", f.name.c_str(), findFaultKind(f.name)->vehicle, f.start,
+                    std::isfinite(f.end) ? std::to_string(f.end).c_str() : "null");
+      listed += one;
+    }
+    std::printf("{\"scenario\": \"%s\", \"obstacles\": %zu, \"targets\": %zu, \"faults\": [%s], \"ok\": true}\n",
+                s.name.c_str(), s.world.buoys.size() + s.world.vessels.size(), s.world.targets.size(), listed.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -75,8 +75,13 @@ const UsvSimulation::Outputs& UsvSimulation::step() {
   ++step_;
   out_.gps.reset();
   out_.lidar = false;
-  if (step_ % gps_every_ == 0) out_.gps = gps_.measure(model_.state());
-  if (cfg_.lidar_on && step_ % lidar_every_ == 0) {
+  const double t = model_.state().t;
+  // a silenced GPS-compass is still sampled: its errors are correlated in time and go on while it is silent
+  if (step_ % gps_every_ == 0) {
+    out_.gps = gps_.measure(model_.state());
+    if (cfg_.faults.active("gps", t)) out_.gps.reset();
+  }
+  if (cfg_.lidar_on && step_ % lidar_every_ == 0 && !cfg_.faults.active("lidar", t)) {
     lidar_.scan(model_.state(), scan_);
     out_.lidar = true;
   }
@@ -131,10 +136,16 @@ const AuvSimulation::Outputs& AuvSimulation::step() {
   out_.odom.reset();
   out_.sonar = false;
   if (step_ % ahrs_every_ == 0) out_.ahrs = ahrs_.measure(s, (s.velocity - before.velocity) / cfg_.dt);
-  if (step_ % depth_every_ == 0) out_.depth = depth_.measure(s);
-  if (has_dvl_ && step_ % dvl_every_ == 0) out_.dvl = dvl_.measure(s);
+  if (step_ % depth_every_ == 0) {
+    out_.depth = depth_.measure(s);
+    if (cfg_.faults.active("depth", s.t)) out_.depth.reset();
+  }
+  if (has_dvl_ && step_ % dvl_every_ == 0) {
+    out_.dvl = dvl_.measure(s);
+    if (cfg_.faults.active("dvl", s.t)) out_.dvl.reset();
+  }
   if (step_ % odom_every_ == 0) out_.odom = ins_.estimate(s);
-  if (cfg_.sonar_on && step_ % sonar_every_ == 0) {
+  if (cfg_.sonar_on && step_ % sonar_every_ == 0 && !cfg_.faults.active("sonar", s.t)) {
     sonar_.ping(s, beam_);
     out_.sonar = true;
   }

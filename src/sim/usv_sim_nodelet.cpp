@@ -17,6 +17,7 @@
 #include "offshore_gnc/JoystickCommand.h"
 #include "offshore_gnc/WaterjetStatus.h"
 #include "offshore_gnc/ros/diagnostics.h"
+#include "offshore_gnc/ros/faults.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/sim/simulation.h"
 #include "ros_sim.h"
@@ -59,6 +60,8 @@ class UsvSimNodelet : public nodelet::Nodelet {
       // /usv/waterjet/applied_cmd when the CAN gateway + emulator chain is in the loop (docs/architecture.md)
       command_topic_ = p.text("command_topic", "/usv/joystick_cmd");
       base_frame_ = p.text("base_frame", "usv/base_link");
+      faults_ = std::make_unique<ros_util::FaultInjector>(nh, "usv", std::vector<std::string>{"gps", "lidar"});
+      cfg.faults = faults_->plan();
       sim_ = std::make_unique<sim::UsvSimulation>(scenario_, cfg);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
@@ -122,6 +125,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
 
   double step() {
     const auto& out = sim_->step();
+    faults_->update(sim_->state().t);
     const auto& s = sim_->state();
     const ros::Time stamp(s.t);
     if (++truth_count_ % 5 == 0) truth_pub_.publish(ros_util::toOdometry(s, "map", base_frame_));  // 20 Hz
@@ -215,6 +219,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
   sim::Scenario scenario_;
   std::unique_ptr<sim::UsvSimulation> sim_;
   std::unique_ptr<sim_ros::SimRunner> runner_;
+  std::unique_ptr<ros_util::FaultInjector> faults_;
   Counters counters_;
   std::string base_frame_, command_topic_;
   double manual_timeout_ = 1.0, last_manual_ = -1e9;

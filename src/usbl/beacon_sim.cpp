@@ -61,7 +61,8 @@ std::string BeaconSimulator::handle(const Message& cmd, double t) {
   const bool wants_reply = cid == CID_PING_SEND || msg_type == MSG_REQ || msg_type == MSG_REQU || msg_type == MSG_REQX;
   if (!wants_reply) return out;
   std::bernoulli_distribution drop(cfg_.dropout_probability);
-  const bool timeout = dest != cfg_.remote_id || current_range_ > cfg_.max_range || drop(rng_);
+  const bool timeout =
+      dest != cfg_.remote_id || current_range_ > cfg_.max_range || drop(rng_) || cfg_.faults.active("usbl", t);
   const double due = timeout ? t + cfg_.timeout : t + 2.0 * current_range_ / cfg_.sound_speed;
   pending_.push_back({due, cid, dest, msg_type, timeout});
   return out;

@@ -16,6 +16,7 @@
 
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/ros/diagnostics.h"
+#include "offshore_gnc/ros/faults.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/usbl/beacon_sim.h"
 #include "offshore_gnc/usbl/pseudo_terminal.h"
@@ -48,6 +49,8 @@ class UsblSimNodelet : public nodelet::Nodelet {
       cfg.timeout = p.number("timeout", 1.0, 0.05, 30);
       cfg.fit_error = p.number("fit_error", 0.3, 0, 300);
       cfg.seed = static_cast<unsigned>(p.integer("seed", 1, 0, 1 << 30));
+      faults_ = std::make_unique<ros_util::FaultInjector>(nh, "auv", std::vector<std::string>{"usbl"});
+      cfg.faults = faults_->plan();
       sim_ = std::make_unique<usbl::BeaconSimulator>(cfg);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
@@ -130,6 +133,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
         }
       }
       std::lock_guard<std::mutex> lock(mutex_);
+      faults_->update(ros::Time::now().toSec());
       write(sim_->poll(ros::Time::now().toSec(), usv_, auv_));
     }
   }
@@ -139,6 +143,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
   usbl::Mounting mount_;
   std::mutex mutex_;
   std::unique_ptr<usbl::BeaconSimulator> sim_;
+  std::unique_ptr<ros_util::FaultInjector> faults_;
   usbl::Pose usv_;
   Eigen::Vector3d auv_ = Eigen::Vector3d::Zero();
   bool have_usv_ = false, have_auv_ = false;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/faults.h"
 #include "offshore_gnc/models/auv.h"
 #include "offshore_gnc/models/environment.h"
 #include "offshore_gnc/models/state.h"
@@ -40,6 +41,7 @@ class UsvSimulation {
     GpsCompassConfig gps;
     LidarConfig lidar;
     models::UsvParams usv;
+    FaultPlan faults;  // "gps" and "lidar" silence those sensors while active
   };
   struct Outputs {
     std::optional<GpsCompassReading> gps;
@@ -78,6 +80,7 @@ class AuvSimulation {
     InsConfig ins;
     double odom_rate_hz = 20.0;
     models::AuvParams auv = models::AuvParams::girona500();
+    FaultPlan faults;  // "sonar", "depth" and "dvl" silence those sensors while active
   };
   struct Outputs {
     std::optional<AhrsReading> ahrs;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "offshore_gnc/common/faults.h"
 #include "offshore_gnc/usbl/positioning.h"
 #include "offshore_gnc/usbl/seatrac.h"
 
@@ -30,6 +31,7 @@ struct BeaconSimConfig {
   double fit_error = 0.3;       // nominal USBL fit error
   double rssi_db = -60.0;
   unsigned seed = 1;
+  FaultPlan faults;  // "usbl": the remote beacon does not reply (every ping times out) while active
   void validate() const;  // throws ConfigError naming the field
 };
 

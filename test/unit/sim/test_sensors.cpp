@@ -403,3 +403,38 @@ TEST(Dvl, AtItsRateOnTheGirona500AndNotOnTheAColor) {
   for (int i = 0; i < 1000; ++i) dvl += a.step().dvl.has_value();
   EXPECT_EQ(dvl, 0);
 }
+
+TEST(Faults, TheSimulationsSilenceEachSensorOnlyWhileItsFaultLasts) {
+  const Scenario sc;
+  UsvSimulation::Config ucfg;
+  ucfg.faults = FaultPlan::parse("gps@2+3 lidar@4+2");
+  UsvSimulation usv(sc, ucfg);
+  int gps_in = 0, gps_out = 0, lidar_in = 0, lidar_out = 0;
+  for (int i = 0; i < 800; ++i) {  // 8 s
+    const auto& o = usv.step();
+    const double t = usv.state().t;
+    const bool gps_fault = t >= 2.0 && t < 5.0, lidar_fault = t >= 4.0 && t < 6.0;
+    if (o.gps) ++(gps_fault ? gps_in : gps_out);
+    if (o.lidar) ++(lidar_fault ? lidar_in : lidar_out);
+  }
+  EXPECT_EQ(gps_in, 0);
+  EXPECT_GE(gps_out, 45);  // 10 Hz over the other 5 s
+  EXPECT_EQ(lidar_in, 0);
+  EXPECT_GT(lidar_out, 0);
+
+  AuvSimulation::Config acfg;
+  acfg.faults = FaultPlan::parse("sonar@1+1 depth@3+1 dvl@5+1");
+  AuvSimulation auv(sc, acfg);
+  int silenced = 0, sonar_back = 0, depth_back = 0, dvl_back = 0;
+  for (int i = 0; i < 800; ++i) {
+    const auto& o = auv.step();
+    const double t = auv.state().t;
+    const bool sonar_f = t >= 1 && t < 2, depth_f = t >= 3 && t < 4, dvl_f = t >= 5 && t < 6;
+    silenced += (sonar_f && o.sonar) + (depth_f && o.depth.has_value()) + (dvl_f && o.dvl.has_value());
+    if (t >= 6.0) sonar_back += o.sonar, depth_back += o.depth.has_value(), dvl_back += o.dvl.has_value();
+  }
+  EXPECT_EQ(silenced, 0);
+  EXPECT_GT(sonar_back, 0);  // each is back after its fault
+  EXPECT_GT(depth_back, 0);
+  EXPECT_GT(dvl_back, 0);
+}

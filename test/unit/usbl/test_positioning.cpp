@@ -216,3 +216,28 @@ TEST(BeaconSim, DataRequestIsAnsweredWithTheRemoteQueue) {
   EXPECT_EQ(d.data, (std::vector<std::uint8_t>{0xCA, 0xFE}));
   EXPECT_EQ(d.fix.msg_type, MSG_RESP);
 }
+
+TEST(BeaconSim, AUsblFaultTimesOutEveryPingWhileItLasts) {
+  BeaconSimConfig cfg = noiseless();
+  cfg.faults = FaultPlan::parse("usbl@100+60");
+  BeaconSimulator sim(cfg);
+  Pose usv;
+  const Eigen::Vector3d auv(50, 0, 10);
+  sim.setCurrentRange(transceiverRange(cfg.mount, usv, auv));
+  StreamDecoder dec;
+  int fixes_in = 0, fixes_out = 0, timeouts_in = 0;
+  for (int i = 0; i < 100; ++i) {
+    const double t = i * 2.0;
+    std::vector<StreamDecoder::Event> ev;
+    dec.feed(sim.handle(Message{true, PingSend{2, MSG_REQU}}, t), ev);
+    dec.feed(sim.poll(t + cfg.timeout + 0.01, usv, auv), ev);
+    const bool fault = t >= 100 && t < 160;
+    for (const auto& e : ev) {
+      if (std::holds_alternative<FixMessage>(e.message->body)) ++(fault ? fixes_in : fixes_out);
+      if (auto s = std::get_if<StatusReply>(&e.message->body); s && s->cid == CID_PING_ERROR && fault) ++timeouts_in;
+    }
+  }
+  EXPECT_EQ(fixes_in, 0);
+  EXPECT_EQ(timeouts_in, 30);
+  EXPECT_EQ(fixes_out, 70);  // no dropouts otherwise (noiseless)
+}
