@@ -31,17 +31,19 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 from offshore_gnc import report, scenario_check  # noqa: E402
+from offshore_gnc.radio import Radio  # noqa: E402
 from offshore_gnc.testing import MasterSet  # noqa: E402
 from offshore_gnc.testing.masters import free_port, kill_tree  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 
 
-def relay_configs(folder, speedup):
+def relay_configs(folder, speedup, dial_port=None):
     """config/relay/{usv,auv}.yaml with the link on a free port instead of the fixed 11411 (two missions on one
     machine would otherwise share a link, both holding the same simulation key), and each topic's rate limit
     (the relay counts in wall seconds) times the simulation's speed-up, so that /usv_gps still reaches the AUV
-    at its rate in simulated time (0: as fast as possible, unlimited); returns vehicle -> file."""
+    at its rate in simulated time (0: as fast as possible, unlimited). dial_port: the AUV dials this port instead
+    (the simulated radio's). Returns (vehicle -> file, the USV relay's port)."""
     import yaml
     files = {}
     port = free_port()
@@ -52,14 +54,14 @@ def relay_configs(folder, speedup):
             c["listen_port"] = port
         for p in c.get("peers", []):
             if p.get("address"):
-                p["address"] = "%s:%d" % (p["address"].rsplit(":", 1)[0], port)
+                p["address"] = "%s:%d" % (p["address"].rsplit(":", 1)[0], dial_port or port)
         for t in c.get("topics", []):
             if t.get("rate_hz"):
                 t["rate_hz"] = float(t["rate_hz"]) * speedup if speedup > 0 else 0.0
         files[v] = os.path.join(folder, "relay-%s.yaml" % v)
         with open(files[v], "w") as f:
             yaml.safe_dump(c, f)
-    return files
+    return files, port
 
 
 def vehicle_configs(auv_model):
@@ -94,7 +96,7 @@ def parse_args(argv=None):
     ap.add_argument("--fault", action="append", default=[], metavar="NAME@START_S[+DURATION_S]",
                     help="fault injection in the simulators (repeatable), e.g. usbl@150+60 (no USBL reply for 60 s "
                          "from sim 150 s) or gps@200+10; NAME is one of gps, lidar (USV), sonar, depth, dvl, usbl "
-                         "(AUV); without a duration it lasts to the end. The report lists each fault and the "
+                         "(AUV), link (the radio between the relays); without a duration it lasts to the end. The report lists each fault and the "
                          "safety supervisor's response (docs/safety.md)")
     ap.add_argument("--after-kill", type=float, default=60.0,
                     help="simulated seconds to keep watching the surviving vehicle after a stack died (default 60)")
@@ -301,7 +303,11 @@ def run(a):
         lockstep = not a.free_running
         common = {"sim": "true", "scenario": os.path.abspath(a.scenario), "rate": str(a.rate), "record": "true",
                   "lockstep": str(lockstep).lower(), "faults": fault_plan}
-        relay = relay_configs(os.path.join(out, "logs"), a.rate)  # a free link port: missions side by side never meet
+        # the radio between the relays, simulated by the job when a link fault is planned
+        link_faults = [f for f in planned if f["name"] == "link"]
+        radio_port = free_port() if link_faults else None
+        relay, usv_relay_port = relay_configs(os.path.join(out, "logs"), a.rate, radio_port)  # missions never meet
+        radio = Radio(usv_relay_port, radio_port) if link_faults else None
         launches = {
             "usv": ms["usv"].roslaunch(os.path.join(REPO, "launch", "usv.launch"), dict(
                 common, bag=os.path.join(out, "usv.bag"), rviz=str(a.rviz).lower(), relay_config=relay["usv"],
@@ -333,6 +339,17 @@ def run(a):
             if clock:
                 clock.tick([v for v in mons if v not in died])
             sim_t = max(u.get("sim_time", 0.0), av.get("sim_time", 0.0))
+            if radio:
+                for f in link_faults:
+                    if f["start_s"] <= sim_t < (f["end_s"] if f["end_s"] is not None else float("inf")):
+                        if f.get("injected_s") is None:
+                            f["injected_s"] = round(sim_t, 2)
+                            print("[mission] fault injection: the radio link is down at sim %.1f s" % sim_t, flush=True)
+                        radio.down()
+                    elif f.get("injected_s") is not None and f.get("ended_s") is None:
+                        f["ended_s"] = round(sim_t, 2)
+                        radio.up()
+                        print("[mission] the radio link is up again at sim %.1f s" % sim_t, flush=True)
             if a.kill and a.kill[0] not in died and sim_t >= a.kill[1]:
                 print("[mission] fault injection: killing the %s stack at sim %.1f s" % (a.kill[0], sim_t), flush=True)
                 kill_tree(launches[a.kill[0]].pid)
@@ -371,6 +388,9 @@ def run(a):
         print(fmt_progress(u, av), flush=True)
         if channel:
             print("[mission] acoustic channel (USV truth to the AUV master): " + channel.summary(), flush=True)
+        if radio:
+            print("[mission] simulated radio: " + radio.summary(), flush=True)
+            radio.close()
         # MasterSet's exit stops roslaunch with SIGINT: rosbag closes its bags cleanly.
     wall = time.time() - t0
     for v in ("usv", "auv"):  # a killed rosbag leaves an unindexed .active file: recover it, lose no data

@@ -159,20 +159,25 @@ def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_st
     for f in planned:
         v, start = f["vehicle"], f["start_s"]
         end = f["end_s"] if f["end_s"] is not None else float("inf")
-        ev = events.get(v, [])
-        on = next((_stamp(t, m) for t, m in ev if m.name == f["name"] and m.active and _stamp(t, m) >= start - 0.5),
-                  None)
-        off = next((_stamp(t, m) for t, m in ev if m.name == f["name"] and not m.active and on is not None
-                    and _stamp(t, m) > on), None)
+        if v == "both":  # injected by the job itself (the radio), which noted when
+            on, off, watched = f.get("injected_s"), f.get("ended_s"), ("usv", "auv")
+        else:
+            ev = events.get(v, [])
+            on = next((_stamp(t, m) for t, m in ev if m.name == f["name"] and m.active and _stamp(t, m) >= start - 0.5),
+                      None)
+            off = next((_stamp(t, m) for t, m in ev if m.name == f["name"] and not m.active and on is not None
+                        and _stamp(t, m) > on), None)
+            watched = (v,)
         responses = []
-        for t, m in transitions.get(v, []):
-            ts = _stamp(t, m)
-            if on is None or ts < on or ts > end + 10.0:
-                continue
-            if m.active_rule in m.active_rules:
-                release = next((_stamp(t2, m2) for t2, m2 in transitions.get(v, []) if _stamp(t2, m2) > ts and
+        for w in watched:
+            tr = transitions.get(w, [])
+            for t, m in tr:
+                ts = _stamp(t, m)
+                if on is None or ts < on or ts > end + 10.0 or m.active_rule not in m.active_rules:
+                    continue
+                release = next((_stamp(t2, m2) for t2, m2 in tr if _stamp(t2, m2) > ts and
                                 m2.active_rule == m.active_rule and m.active_rule not in m2.active_rules), None)
-                responses.append({"rule": m.active_rule, "action": m.action_name if m.action_name else "",
+                responses.append({"vehicle": w, "rule": m.active_rule, "action": m.action_name,
                                   "after_s": round(ts - on, 2),
                                   "released_s": round(release, 2) if release is not None else None,
                                   "reason": m.reason})
@@ -398,8 +403,9 @@ def _summary(out, m, scenario):
         lines += ["Stacks that died: %s (simulated time [s]); the other vehicle moved at most %s afterwards." % (
             ", ".join("%s at %s" % kv for kv in m["stacks_died"].items()), _fmt(m["survivor_drift_m"], " m")), ""]
     for f in m.get("faults", []):
-        resp = "; ".join("%s -> %s after %.1f s%s" % (r["rule"], r["action"], r["after_s"], "" if r["released_s"] is None
-                                                       else ", released at %.1f s" % r["released_s"])
+        resp = "; ".join("%s %s -> %s after %.1f s%s" % (r["vehicle"].upper(), r["rule"], r["action"], r["after_s"],
+                                                          "" if r["released_s"] is None
+                                                          else ", released at %.1f s" % r["released_s"])
                          for r in f["responses"]) or "no safety rule fired"
         lines += ["Fault `%s` (%s) injected at %s s, ended at %s s: %s.%s" % (
             f["name"], f["vehicle"].upper(), _fmt(f["injected_s"]), _fmt(f["ended_s"]), resp,

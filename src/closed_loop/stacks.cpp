@@ -8,6 +8,7 @@
 #include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/perception/sensor_frame.h"
+#include "offshore_gnc/safety/supervisor.h"
 
 namespace offshore_gnc {
 namespace closed_loop {
@@ -90,6 +91,10 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
   c.control = readControl(dir + "/control/usv.yaml");
   const std::string mission = dir + "/mission/usv.yaml";
   readParamsYaml(loadYaml(mission), mission::UsvMissionParams::table(), c.mission, mission);
+  const std::string safety_file = dir + "/safety/usv.yaml";  // as the mission nodelet reads the region
+  safety::SupervisorConfig sc = safety::usvDefaults();
+  readParamsYaml(loadYaml(safety_file), safety::SupervisorConfig::table(), sc, safety_file);
+  c.region = sc.region;
   c.sim.seed = 1;  // sim_usv.launch's default
   return c;
 }
@@ -104,7 +109,9 @@ UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
       mission_(cfg.mission),
       guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
-      mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {}
+      mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {
+  if (!cfg.region.empty()) mission_.setRegion(safety::Region::fromList(cfg.region));
+}
 
 void UsvStack::onTarget(const Eigen::Vector2d& ned, double t) {
   mission_.onTarget(ned, t);

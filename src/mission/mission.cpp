@@ -237,6 +237,21 @@ bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
     return false;
   }
   if (target_ && (*target_ - target).norm() < 0.5) return false;  // repeated (relay resend, latched)
+  if (region_) {
+    std::string why = region_->checkTarget(target.x(), target.y());
+    if (why.empty() && region_->checkPath(std::vector<Eigen::Vector2d>{*pose_, target})) {
+      std::ostringstream os;
+      os << "the transit to the target at N " << target.x() << " E " << target.y()
+         << " would leave the operating region";
+      why = os.str();
+    }
+    if (!why.empty()) {
+      if (!refused_ || (*refused_ - target).norm() >= 0.5) counters_.increment("target_outside_region");
+      refused_ = target;
+      refusal_ = why;
+      return false;
+    }
+  }
   target_ = target;
   const Eigen::Vector2d d = target - *pose_;
   const double dist = d.norm();
@@ -303,6 +318,7 @@ std::string UsvMission::detail() const {
       os << "no sign of the AUV side for more than " << p_.peer_timeout << " s; holding position";
       break;
   }
+  if (!refusal_.empty()) os << "; refused a target: " << refusal_;
   return os.str();
 }
 

@@ -17,6 +17,7 @@
 #include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/safety/supervisor.h"
 #include "ros_mission.h"
 
 namespace offshore_gnc {
@@ -29,6 +30,12 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     try {
       ros_util::readParams(p, mission::UsvMissionParams::table(), mp);
       mission_ = std::make_unique<mission::UsvMission>(mp);
+      // Targets are checked against the operating region of the vehicle's safety supervisor, read as the
+      // supervisor reads it (its preset and the parameters of `safety` beside this node, launch/safety.launch):
+      // one region, defined once.
+      safety::SupervisorConfig sc = safety::usvDefaults();
+      ros_util::readParams(ros_util::ParamReader(ros::NodeHandle(nh, "safety")), safety::SupervisorConfig::table(), sc);
+      if (!sc.region.empty()) mission_->setRegion(safety::Region::fromList(sc.region));
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -48,7 +55,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
       s.summary(ph == mission::UsvPhase::PeerLost ? diagnostic_msgs::DiagnosticStatus::WARN
                                                   : diagnostic_msgs::DiagnosticStatus::OK,
                 mission::toString(ph));
-      ros_util::addCounters(s, mission_->counters(), {"target_not_finite", "pose_not_finite"});
+      ros_util::addCounters(s, mission_->counters(), {"target_not_finite", "pose_not_finite", "target_outside_region"});
     });
     timer_ = nh.createTimer(ros::Duration(0.5), &UsvMissionNodelet::onTimer, this);
   }
@@ -69,8 +76,11 @@ class UsvMissionNodelet : public nodelet::Nodelet {
 
   void onTarget(const Target::ConstPtr& t) {
     const int before = mission_->pathVersion();
+    const auto refused = mission_->counters().get("target_outside_region");
     mission_->onTarget({t->origin.x, t->origin.y}, ros::Time::now().toSec());
-    if (mission_->pathVersion() != before) {
+    if (mission_->counters().get("target_outside_region") != refused) {
+      NODELET_ERROR("target at N %.1f E %.1f refused: %s", t->origin.x, t->origin.y, mission_->refusal().c_str());
+    } else if (mission_->pathVersion() != before) {
       markers_pub_.publish(mission_ros::targetMarker(t->origin.x, t->origin.y, t->origin.z, ros::Time::now()));
       NODELET_INFO("target received: %s", mission_->detail().c_str());
     } else {

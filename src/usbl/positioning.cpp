@@ -14,6 +14,17 @@ Eigen::Matrix3d Mounting::rotation() const {
       .toRotationMatrix();
 }
 
+Pose predictPose(const Pose& p, const Eigen::Vector3d& v_body, const Eigen::Vector3d& w_body, double dt) {
+  // midpoint attitude for the translation: a turning vehicle's track curves
+  const double angle = w_body.norm() * dt;
+  const Eigen::Vector3d axis = angle > 1e-12 ? Eigen::Vector3d(w_body.normalized()) : Eigen::Vector3d::UnitZ();
+  const Eigen::Quaterniond half = p.q * Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * angle, axis));
+  Pose out;
+  out.ned = p.ned + half * v_body * dt;
+  out.q = (p.q * Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis))).normalized();
+  return out;
+}
+
 Eigen::Quaterniond enuFluToNedFrd(const Eigen::Quaterniond& q_enu_flu) {
   Eigen::Matrix3d ned_enu;
   ned_enu << 0, 1, 0, 1, 0, 0, 0, 0, -1;

@@ -8,6 +8,7 @@
 #include <ros/ros.h>
 #include <std_msgs/UInt8MultiArray.h>
 
+#include <algorithm>
 #include <atomic>
 #include <limits>
 #include <memory>
@@ -90,12 +91,26 @@ class UsblSimNodelet : public nodelet::Nodelet {
     p.q = usbl::enuFluToNedFrd(e);
     return true;
   }
+  // The USV's truth reaches this master late (in the main job through its simulated acoustic channel, up to a
+  // second of simulated time with the two simulators in lockstep rounds): kept with its stamp and body rates and
+  // carried forward to the time it is used, so a turning USV's transceiver points where it really does.
   void onUsv(const nav_msgs::Odometry& o) {
     usbl::Pose p;
     if (!poseOf(o, p)) return counters_.increment("bad_ground_truth");
+    const auto& v = o.twist.twist.linear;
+    const auto& w = o.twist.twist.angular;
+    const Eigen::Vector3d v_frd(v.x, -v.y, -v.z), w_frd(w.x, -w.y, -w.z);  // FLU -> FRD
     std::lock_guard<std::mutex> lock(mutex_);
     usv_ = p;
+    if (v_frd.allFinite() && w_frd.allFinite()) usv_v_ = v_frd, usv_w_ = w_frd;
+    usv_t_ = o.header.stamp.toSec();
     have_usv_ = true;
+  }
+  // The USV at time t from its latest truth, backwards too (the AUV simulator may be behind the USV's); at most
+  // kMaxPredict: older truth is not carried further.
+  usbl::Pose usvAt(double t) const {
+    constexpr double kMaxPredict = 2.0;  // [s]
+    return usbl::predictPose(usv_, usv_v_, usv_w_, std::clamp(t - usv_t_, -kMaxPredict, kMaxPredict));
   }
   void onAuv(const nav_msgs::Odometry& o) {
     usbl::Pose p;
@@ -127,14 +142,16 @@ class UsblSimNodelet : public nodelet::Nodelet {
           if (!e.message) continue;
           std::lock_guard<std::mutex> lock(mutex_);
           // Without both poses the beacon is out of reach: the ping times out.
-          sim_->setCurrentRange(have_usv_ && have_auv_ ? usbl::transceiverRange(mount_, usv_, auv_)
+          const double now = ros::Time::now().toSec();
+          sim_->setCurrentRange(have_usv_ && have_auv_ ? usbl::transceiverRange(mount_, usvAt(now), auv_)
                                                        : std::numeric_limits<double>::infinity());
-          write(sim_->handle(*e.message, ros::Time::now().toSec()));
+          write(sim_->handle(*e.message, now));
         }
       }
       std::lock_guard<std::mutex> lock(mutex_);
-      faults_->update(ros::Time::now().toSec());
-      write(sim_->poll(ros::Time::now().toSec(), usv_, auv_));
+      const double now = ros::Time::now().toSec();
+      faults_->update(now);
+      write(sim_->poll(now, usvAt(now), auv_));
     }
   }
 
@@ -145,6 +162,8 @@ class UsblSimNodelet : public nodelet::Nodelet {
   std::unique_ptr<usbl::BeaconSimulator> sim_;
   std::unique_ptr<ros_util::FaultInjector> faults_;
   usbl::Pose usv_;
+  Eigen::Vector3d usv_v_ = Eigen::Vector3d::Zero(), usv_w_ = Eigen::Vector3d::Zero();  // body FRD
+  double usv_t_ = 0.0;
   Eigen::Vector3d auv_ = Eigen::Vector3d::Zero();
   bool have_usv_ = false, have_auv_ = false;
   usbl::StreamDecoder decoder_;

@@ -39,6 +39,7 @@ struct UsvStackConfig {
   guidance::GuidanceParams guidance;  // config/guidance/usv.yaml
   control::ControlLoopParams control; // config/control/usv.yaml
   mission::UsvMissionParams mission;  // config/mission/usv.yaml
+  std::vector<double> region;         // config/safety/usv.yaml: the supervisor's region, the mission's target check
   double mission_period = 0.5;        // the mission nodelet's timer [s]
   bool mission_enabled = true;        // false: guidance follows setRoute()'s path (benchmarks, tests)
   bool use_truth = false;             // guidance and control on the true state (isolates the controller)

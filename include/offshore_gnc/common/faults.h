@@ -16,7 +16,7 @@ namespace offshore_gnc {
 
 struct FaultKind {
   const char* name;
-  const char* vehicle;  // the master whose simulator injects it
+  const char* vehicle;  // the master whose simulator injects it; "both": the main job does, between the masters
   const char* effect;
 };
 
@@ -28,6 +28,7 @@ inline const std::vector<FaultKind>& faultKinds() {
       {"depth", "auv", "the pressure sensor is silent (/auv/pressure)"},
       {"dvl", "auv", "the DVL is silent (/auv/dvl; the Girona500's)"},
       {"usbl", "auv", "the AUV's beacon does not reply: every USBL ping times out"},
+      {"link", "both", "the radio between the vehicles' relays is down (the main job's simulated radio)"},
   };
   return kinds;
 }

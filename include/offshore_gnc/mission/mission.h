@@ -11,6 +11,7 @@
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/guidance/los.h"
+#include "offshore_gnc/safety/region.h"
 
 namespace offshore_gnc {
 namespace mission {
@@ -112,6 +113,11 @@ class UsvMission {
   // A target from the AUV; returns true when it starts (or restarts) a transit. A target whose position is not
   // finite is rejected and counted. A repeat of the same target (within 0.5 m) does not replan.
   bool onTarget(const Eigen::Vector2d& target, double t);
+  // The operating region (the safety supervisor's `region`, docs/safety.md): a target outside it, or whose
+  // transit from the vehicle would leave it, is refused with a sentence (refusal()) and counted
+  // ("target_outside_region"); the mission goes on as it was. Without one, no check.
+  void setRegion(std::optional<safety::Region> region) { region_ = std::move(region); }
+  const std::string& refusal() const { return refusal_; }  // why the last refused target was refused
   void onPathFinished(double t);           // guidance reports the end of the path reached
   // Guidance's mode and distance to go: the end of the transit is station keeping after path following.
   void onGuidance(guidance::Mode mode, double distance_to_go, double t);
@@ -137,7 +143,9 @@ class UsvMission {
   UsvMissionParams p_;
   UsvPhase phase_ = UsvPhase::StationKeeping;
   bool manual_ = false, following_ = false;
-  std::optional<Eigen::Vector2d> pose_, target_, station_;
+  std::optional<Eigen::Vector2d> pose_, target_, station_, refused_;
+  std::optional<safety::Region> region_;
+  std::string refusal_;
   std::optional<std::vector<Eigen::Vector2d>> path_due_;
   std::vector<Eigen::Vector2d> path_;
   int path_version_ = 0;

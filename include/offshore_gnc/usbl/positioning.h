@@ -28,6 +28,9 @@ struct Pose {
   Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
 };
 
+// The pose dt later at a constant body velocity and body rate (FRD), e.g. a pose received late carried to now.
+Pose predictPose(const Pose& p, const Eigen::Vector3d& v_body, const Eigen::Vector3d& w_body, double dt);
+
 // ROS map frame conventions (ENU world, FLU body) -> NED world, FRD body.
 Eigen::Quaterniond enuFluToNedFrd(const Eigen::Quaterniond& q_enu_flu);
 

@@ -36,8 +36,13 @@ TEST(FaultPlan, EachVehicleGetsItsOwnFaults) {
   ASSERT_EQ(auv.faults().size(), 2u);
   EXPECT_TRUE(auv.active("depth", 42.0));
   EXPECT_FALSE(usv.active("depth", 42.0));
+  // the radio is the job's, between the masters: no simulator injects it
+  EXPECT_TRUE(FaultPlan::parse("link@5+5").of("usv").empty());
+  EXPECT_TRUE(FaultPlan::parse("link@5+5").of("auv").empty());
+  EXPECT_EQ(FaultPlan::parse("link@5+5").of("both").faults().size(), 1u);
   for (const auto& k : faultKinds()) {  // every kind names its vehicle and its effect
-    EXPECT_TRUE(std::string(k.vehicle) == "usv" || std::string(k.vehicle) == "auv") << k.name;
+    const std::string v = k.vehicle;
+    EXPECT_TRUE(v == "usv" || v == "auv" || v == "both") << k.name;
     EXPECT_GT(std::string(k.effect).size(), 10u) << k.name;
   }
 }

@@ -225,3 +225,34 @@ TEST(UsvMission, ManualCommandsHoldAutonomyOffUntilTheyStop) {
   m.tick(7.0);  // 1.1 s after the last one
   EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
 }
+
+TEST(UsvMission, ATargetOutsideTheOperatingRegionIsRefusedSayingWhy) {
+  UsvMission m;
+  // the USV preset's region: 2 km square around the origin
+  m.setRegion(safety::Region::fromList({-1000, -1000, 1000, -1000, 1000, 1000, -1000, 1000}));
+  m.onPose({0, 0}, 0.0, 0.0);
+  (void)m.takePath();
+  // a target computed on another lake's origin: 2,520 km away
+  EXPECT_FALSE(m.onTarget({2520.0e3, 0.0}, 1.0));
+  EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);  // the mission goes on waiting, no transit planned
+  EXPECT_FALSE(m.takePath());
+  EXPECT_EQ(m.counters().get("target_outside_region"), 1u);
+  EXPECT_NE(m.refusal().find("2520.0 km"), std::string::npos) << m.refusal();
+  EXPECT_NE(m.detail().find("refused a target"), std::string::npos) << m.detail();
+  EXPECT_FALSE(m.onTarget({2520.0e3, 0.1}, 2.0));  // the relay's resend is refused again, counted once
+  EXPECT_EQ(m.counters().get("target_outside_region"), 1u);
+  // a good target afterwards is used
+  EXPECT_TRUE(m.onTarget({40.0, 30.0}, 3.0));
+  EXPECT_EQ(m.phase(), UsvPhase::Transit);
+}
+
+TEST(UsvMission, ATransitThatWouldLeaveAConcaveRegionIsRefused) {
+  UsvMission m;
+  // a U-shaped lake: two arms (east 0..20 and 80..100, north to 100) joined in the south (north 0..20)
+  m.setRegion(safety::Region::fromList({0, 0, 100, 0, 100, 20, 20, 20, 20, 80, 100, 80, 100, 100, 0, 100}));
+  m.onPose({90, 10}, 0.0, 0.0);  // in the west arm
+  EXPECT_FALSE(m.onTarget({90, 90}, 1.0));  // in the east arm: straight across the land between
+  EXPECT_NE(m.refusal().find("would leave the operating region"), std::string::npos) << m.refusal();
+  EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
+  EXPECT_TRUE(m.onTarget({10, 15}, 2.0));  // down its own arm: inside all the way
+}

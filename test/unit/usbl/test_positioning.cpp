@@ -241,3 +241,21 @@ TEST(BeaconSim, AUsblFaultTimesOutEveryPingWhileItLasts) {
   EXPECT_EQ(timeouts_in, 30);
   EXPECT_EQ(fixes_out, 70);  // no dropouts otherwise (noiseless)
 }
+
+TEST(UsblGeometry, APosePredictedAlongATurnStaysOnTheCircle) {
+  Pose p;
+  p.ned = {10, -5, 0.5};
+  const double yaw0 = deg2rad(30), speed = 2.0, rate = 0.2;  // turning to starboard at 0.2 rad/s
+  p.q = yawQ(yaw0);
+  for (double dt : {0.1, 0.5, 1.0, -1.0}) {
+    const Pose q = predictPose(p, {speed, 0, 0}, {0, 0, rate}, dt);
+    const double yaw1 = yaw0 + rate * dt, radius = speed / rate;
+    const Eigen::Vector3d exact = p.ned + Eigen::Vector3d(radius * (std::sin(yaw1) - std::sin(yaw0)),
+                                                          -radius * (std::cos(yaw1) - std::cos(yaw0)), 0.0);
+    EXPECT_LT((q.ned - exact).norm(), 2e-3 * std::abs(dt) * speed) << dt;
+    EXPECT_NEAR(q.q.angularDistance(yawQ(yaw1)), 0.0, 1e-9) << dt;
+  }
+  const Pose still = predictPose(p, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 0.7);  // no motion: no change
+  EXPECT_LT((still.ned - p.ned).norm(), 1e-12);
+  EXPECT_NEAR(still.q.angularDistance(p.q), 0.0, 1e-12);
+}
