@@ -94,10 +94,10 @@ def parse_args(argv=None):
     ap.add_argument("--kill", metavar="VEHICLE@SIM_S", default=None,
                     help="fault injection: SIGKILL one vehicle's whole stack at this simulated time, e.g. auv@120")
     ap.add_argument("--fault", action="append", default=[], metavar="NAME@START_S[+DURATION_S]",
-                    help="fault injection in the simulators (repeatable), e.g. usbl@150+60 (no USBL reply for 60 s "
-                         "from sim 150 s) or gps@200+10; NAME is one of gps, lidar (USV), sonar, depth, dvl, usbl "
-                         "(AUV), link (the radio between the relays); without a duration it lasts to the end. The report lists each fault and the "
-                         "safety supervisor's response (docs/safety.md)")
+                    help="fault injection (repeatable), e.g. usbl@150+60 (no USBL reply for 60 s from sim 150 s); "
+                         "NAME is a kind of docs/safety.md's table (offshore_gnc::faultKinds(); an unknown one is "
+                         "refused with the list); without a duration it lasts to the end. The report lists each fault "
+                         "and the safety supervisor's response")
     ap.add_argument("--after-kill", type=float, default=60.0,
                     help="simulated seconds to keep watching the surviving vehicle after a stack died (default 60)")
     a = ap.parse_args(argv)

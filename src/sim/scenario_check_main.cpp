@@ -77,9 +77,10 @@ int main(int argc, char** argv) {
     std::string listed;
     for (const auto& f : faults.faults()) {
       char one[160];
+      char end[32] = "null";  // no end: to the end of the run
+      if (std::isfinite(f.end)) std::snprintf(end, sizeof end, "%g", f.end);
       std::snprintf(one, sizeof one, "%s{\"name\": \"%s\", \"vehicle\": \"%s\", \"start_s\": %g, \"end_s\": %s}",
-                    listed.empty() ? "" : ", ", f.name.c_str(), findFaultKind(f.name)->vehicle, f.start,
-                    std::isfinite(f.end) ? std::to_string(f.end).c_str() : "null");
+                    listed.empty() ? "" : ", ", f.name.c_str(), findFaultKind(f.name)->vehicle, f.start, end);
       listed += one;
     }
     std::printf("{\"scenario\": \"%s\", \"obstacles\": %zu, \"targets\": %zu, \"faults\": [%s], \"ok\": true}\n",
