@@ -184,8 +184,9 @@ void UsvStack::step() {
     if (cfg_.mission_enabled) mission_.onGuidance(last_.los.mode, last_.los.distance_to_go, t);
   }
   if (step_ % control_every_ == 0) {
-    const control::ActuatorCommand c = control_.update(t);
-    sim_.setCommand(models::UsvCommand{c.joystick.surge, c.joystick.sway, c.joystick.yaw});
+    command_ = control_.update(t);
+    const auto& j = command_.joystick;
+    sim_.setCommand(models::UsvCommand{j.surge, j.sway, j.yaw});
   }
 }
 

@@ -33,10 +33,7 @@ const ParamTable<UsvControlParams>& UsvControlParams::table() {
       .nest("yaw/", &P::yaw, PidGains::table())
       .number("max_surge_force", &P::max_surge_force, 1e-3, 1e7, "N", "surge force at full joystick deflection")
       .nest("filter/", &P::filter, FilterParams::table())
-      .number("dp/speed_gain", &P::dp_speed_gain, 0.0, 10.0, "1/s", "station keeping: speed per metre of offset")
-      .number("dp/max_speed", &P::dp_max_speed, 0.0, 10.0, "m/s", "station keeping: largest speed")
-      .number("dp/sway_gain", &P::dp_sway_gain, 0.0, 100.0, "s/m", "sway deflection per m/s of sway speed error")
-      .number("dp/radius", &P::dp_radius, 0.0, 1000.0, "m", "beyond it station keeping points the bow at the point")
+      .nest("dp/", &P::dp, DpParams::table())
       .number("turn_thrust", &P::turn_thrust, 0.0, 1.0, "",
               "least joystick surge while following a path with the bow > 30 deg off (the jets steer with thrust)");
   return t;
@@ -59,8 +56,11 @@ void UsvController::setParams(const UsvControlParams& p) {
   if (refilter) {
     f_u_ = FeedbackFilter(p.filter, p.dt);
     f_yaw_ = FeedbackFilter(p.filter, p.dt);
+    f_r_ = FeedbackFilter(p.filter, p.dt);
     primed_ = false;
   }
+  if (refilter || !dp_) dp_ = std::make_unique<DynamicPositioning>(p.dp, p.filter, p.dt);
+  else dp_->setParams(p.dp);  // keeps what it has learnt of the current
 }
 
 JoystickOut UsvController::update(const VehicleState& s, const MotionReference& r) {
@@ -77,6 +77,7 @@ JoystickOut UsvController::update(const VehicleState& s, const MotionReference& 
   if (!primed_) {
     yaw_unwrapped_ = s.yaw;
     f_yaw_.reset(s.yaw);
+    f_r_.reset(s.angular_rate.z());
     f_u_.reset(s.velocity.x());
     u_f_prev_ = s.velocity.x();
     primed_ = true;
@@ -85,6 +86,10 @@ JoystickOut UsvController::update(const VehicleState& s, const MotionReference& 
   }
   yaw_prev_ = s.yaw;
   yaw_f_ = wrapAngle(f_yaw_.step(yaw_unwrapped_));
+  // The yaw rate through the same low-pass + notch cascade as the heading (eq. 4.15-4.16 filter the feedback):
+  // with P on the filtered heading and D on the raw rate the two terms disagreed in phase in the notch band, and
+  // the slow boat's heading loop rang at ~40 s periods (the mission's cross-track oscillation).
+  const double r_f = f_r_.step(s.angular_rate.z());
   const double u_f = f_u_.step(s.velocity.x());
   const double du = (u_f - u_f_prev_) / p_.dt;
   u_f_prev_ = u_f;
@@ -96,20 +101,12 @@ JoystickOut UsvController::update(const VehicleState& s, const MotionReference& 
   double u_ref = r.surge;
   double heading = r.heading;
   if (r.mode == ReferenceMode::kHold) {
-    // Waterjets give little sway: away from the point, point the bow at it and drive back.
-    const Eigen::Vector2d d_ned = r.point.head<2>() - s.position.head<2>();
-    const Eigen::Vector2d err = toBody(d_ned, s.yaw);
-    u_ref = std::clamp(p_.dp_speed_gain * err.x(), -p_.dp_max_speed, p_.dp_max_speed);
-    if (d_ned.norm() > p_.dp_radius) {
-      // Turn first, then drive: surge scaled by how well the bow points at the hold point. At full speed while
-      // turning the 8 m boat orbited the point on its turning circle (hold 11-27 m in the closed loop, 8 m now;
-      // a least surge share for steering, tried at 0.2-1.0, made it worse).
-      heading = std::atan2(d_ned.y(), d_ned.x());
-      const double c = std::max(0.0, std::cos(angleDiff(heading, s.yaw)));
-      u_ref = std::min(p_.dp_speed_gain * d_ned.norm(), p_.dp_max_speed) * c * c;
-    }
-    const double v_ref = std::clamp(p_.dp_speed_gain * err.y(), -p_.dp_max_speed, p_.dp_max_speed);
-    out.sway = clamp1(p_.dp_sway_gain * (v_ref - s.velocity.y()));
+    dp_out_ = dp_->update(s, r.point.head<2>(), r.heading);
+    out.surge = dp_out_.surge;
+    out.sway = dp_out_.sway;
+    surge_.reset();
+    out.yaw = clamp1(yaw_.update(angleDiff(dp_out_.heading, yaw_f_), -r_f, p_.dt));
+    return out;
   }
   out.surge = clamp1(surge_.update(u_ref - u_f, -du, p_.dt) / p_.max_surge_force);
   // Turning needs thrust (braking astern gives it too): in the slowdown before the end of a path, in a current
@@ -118,7 +115,7 @@ JoystickOut UsvController::update(const VehicleState& s, const MotionReference& 
   if (r.mode == ReferenceMode::kFollow && std::abs(angleDiff(heading, yaw_f_)) > deg2rad(30.0) &&
       std::abs(out.surge) < p_.turn_thrust)
     out.surge = p_.turn_thrust;
-  out.yaw = clamp1(yaw_.update(angleDiff(heading, yaw_f_), -s.angular_rate.z(), p_.dt));
+  out.yaw = clamp1(yaw_.update(angleDiff(heading, yaw_f_), -r_f, p_.dt));
   return out;
 }
 

@@ -17,7 +17,7 @@ const ParamTable<LosParams>& LosParams::table() {
       .number("ki", &P::ki, 0.0, 1.0, "1/(m s)", "ILOS integral gain (Table 4.1 LOS K_I)")
       .number("integral_limit", &P::integral_limit, 0.0, kPi / 2, "rad", "anti-windup: largest integral steering")
       .flag("adaptive_crab", &P::adaptive_crab, "estimate the crab (sideslip) angle (adaptive LOS)")
-      .number("crab_gain", &P::crab_gain, 0.0, 1.0, "1/(m s)", "gain of the crab-angle estimate")
+      .number("crab_gain", &P::crab_gain, 0.0, 1.0, "1/m^2", "gain of the crab-angle estimate (per m/s of speed)")
       .number("crab_limit", &P::crab_limit, 0.0, kPi / 2, "rad", "largest magnitude of the crab-angle estimate")
       .number("acceptance_radius", &P::acceptance_radius, 0.01, 1000.0, "m",
               "circle (USV, 2 L_USV) or sphere (AUV) of acceptance")
@@ -86,6 +86,10 @@ void LosGuidance::clear() {
 
 bool LosGuidance::setPath(const std::vector<Eigen::Vector3d>& waypoints, bool resume,
                           const std::vector<bool>& detour) {
+  // A replan of a path already finished (station keeping at its end) keeps holding when the end stays where it
+  // was: following the lead-in leg again from wherever the current had set the boat sent it round in circles.
+  const bool was_holding = resume && finished_ && !wp_.empty() && !waypoints.empty() &&
+                           (waypoints.back() - wp_.back()).norm() <= p_.min_leg_length + 1e-9;
   clear();
   if (!detour.empty() && detour.size() != waypoints.size()) {
     counters_.increment("bad_path");
@@ -121,6 +125,11 @@ bool LosGuidance::setPath(const std::vector<Eigen::Vector3d>& waypoints, bool re
     wp_.clear();
     detour_.clear();
     return false;
+  }
+  if (was_holding) {
+    leg_ = wp_.size() - 1;
+    finished_ = true;
+    return true;
   }
   if (resume && have_pose_) {
     // Nearest leg to the vehicle; ties go to the later leg so that progress is never undone.
@@ -234,7 +243,10 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
     integral_ = std::clamp(integral_, -imax, imax);
   }
   if (p_.adaptive_crab) {
-    beta_hat_ += dt * p_.crab_gain * delta / std::sqrt(delta * delta + e * e) * e;
+    // Fossen's ALOS: the update scales with the speed U, as the cross-track rate does; without it the
+    // estimate outran the look-ahead at low speed (the mission's transit lies in the slowdown: ringing at ~40 s).
+    const double speed = std::hypot(s.velocity.x(), s.velocity.y());
+    beta_hat_ += dt * p_.crab_gain * speed * delta / std::sqrt(delta * delta + e * e) * e;
     beta_hat_ = std::clamp(beta_hat_, -p_.crab_limit, p_.crab_limit);
   }
   const double chi_r = std::atan(-p_.kp * e - p_.ki * integral_);  // eq. 4.10

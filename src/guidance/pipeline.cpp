@@ -17,7 +17,7 @@ GuidanceParams GuidanceParams::preset(const std::string& vehicle) {
     // slow down over the last 60 m; safety-box corners and the stand-off point are reached, not cut.
     p.los.kp = 0.1;
     p.los.ki = 0.001;
-    p.los.crab_gain = 0.004;
+    p.los.crab_gain = 0.0027;  // 0.004 at the 1.5 m/s cruise before the update scaled with the speed
     p.los.acceptance_radius = 16.0;
     p.los.detour_radius = 2.0;
     p.los.final_radius = 2.0;

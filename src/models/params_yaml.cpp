@@ -40,6 +40,7 @@ class Reader {
       throw ConfigError(source_ + ": " + e.what());
     }
   }
+  bool has(const std::string& key) const { return static_cast<bool>(node_[key]); }
   // Optional scalar: keeps `v` when absent.
   void opt(const std::string& key, double& v, double lo, double hi) {
     if (node_[key]) v = num(key, lo, hi);
@@ -146,6 +147,12 @@ UsvParams usvParamsFromYaml(const std::string& text, const std::string& source) 
   p.joy_r_full = r.num("joy_r_full", 1, 1e6);
   p.bucket_band = r.num("bucket_band", 1e-3, 1);
   p.reverse_efficiency = r.num("reverse_efficiency", 0, 1);
+  // twin jets (optional: files written before the per-jet model keep their meaning with its defaults)
+  if (r.has("propulsion")) p.propulsion = r.str("propulsion", {"twin", "lumped"}) == "lumped" ? UsvPropulsion::Lumped
+                                                                                              : UsvPropulsion::Twin;
+  r.opt("jet_y", p.jet_y, 0.01, 10);
+  r.opt("bucket_rate", p.bucket_rate, 0.01, 100);
+  r.opt("yaw_rpm_share", p.yaw_rpm_share, 0, 1);
   r.optVec("rpm_num", p.rpm_num);
   r.optVec("rpm_den", p.rpm_den);
   p.nozzle_delay = r.num("nozzle_delay", 0, 10);

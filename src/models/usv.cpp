@@ -10,6 +10,7 @@
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/models/integrator.h"
+#include "offshore_gnc/models/joystick_allocation.h"
 
 namespace offshore_gnc {
 namespace models {
@@ -61,6 +62,9 @@ void UsvParams::validate() const {
   requireRange("joy_u_full", joy_u_full, 1.0, 1e6);
   requireRange("joy_r_full", joy_r_full, 1.0, 1e6);
   requireRange("bucket_band", bucket_band, 1e-3, 1.0);
+  requireRange("jet_y", jet_y, 0.01, 10.0);
+  requireRange("bucket_rate", bucket_rate, 0.01, 100.0);
+  requireRange("yaw_rpm_share", yaw_rpm_share, 0.0, 1.0);
   requireRange("reverse_efficiency", reverse_efficiency, 0.0, 1.0);
   requireRange("nozzle_delay", nozzle_delay, 0.0, 10.0);
   requireRange("nozzle_time_constant", nozzle_time_constant, 1e-3, 100.0);
@@ -87,6 +91,28 @@ void UsvParams::validate() const {
   TransferFunction("rpm_tf", rpm_num, rpm_den);
 }
 
+// Table 3.1 (linearly extrapolated to 0 and 12 kt, never negative) x affinity law.
+Lookup2D makeThrustTable(const UsvParams& p) {
+  const Lookup1D ref("table_speed_kt", p.table_speed_kt, p.table_thrust_kn);
+  const auto& sk = p.table_speed_kt;
+  const auto& fk = p.table_thrust_kn;
+  auto thrustAt = [&](double kt) {
+    std::size_t i = kt < sk.front() ? 0 : (kt > sk.back() ? sk.size() - 2 : sk.size());
+    if (i == sk.size()) return ref(kt) * 1000.0;
+    const double slope = (fk[i + 1] - fk[i]) / (sk[i + 1] - sk[i]);
+    return std::max(0.0, fk[i] + slope * (kt - sk[i])) * 1000.0;
+  };
+  std::vector<double> speeds, rpms, z;
+  for (double kt = 0.0; kt <= std::max(12.0, sk.back()) + 1e-9; kt += 0.5) speeds.push_back(kt * kKnot);
+  for (double r = p.rpm_min; r < p.rpm_max + 1e-9; r += (p.rpm_max - p.rpm_min) / 36.0) rpms.push_back(r);
+  if (rpms.front() > 0.0) rpms.insert(rpms.begin(), 0.0);
+  for (double s : speeds)
+    for (double r : rpms) z.push_back(thrustAt(s / kKnot) * std::pow(r / p.rpm_ref, 2));  // eq. 3.11
+  return Lookup2D("waterjet_thrust", speeds, rpms, z);
+}
+
+UsvModel::~UsvModel() = default;
+
 UsvModel::UsvModel(const UsvParams& p) : p_(p) {
   p_.validate();
   const double iz = p_.inertiaZ();
@@ -99,23 +125,11 @@ UsvModel::UsvModel(const UsvParams& p) : p_(p) {
   m_inv_ = m.inverse();
   joy_rpm_ = Lookup1D("joy_u", p_.joy_u, p_.joy_u_rpm);
   joy_nozzle_ = Lookup1D("joy_r", p_.joy_r, p_.joy_r_nozzle);
-  // 2-D thrust table: Table 3.1 (linearly extrapolated to 0 and 12 kt, never negative) x affinity law.
-  const Lookup1D ref("table_speed_kt", p_.table_speed_kt, p_.table_thrust_kn);
-  const auto& sk = p_.table_speed_kt;
-  const auto& fk = p_.table_thrust_kn;
-  auto thrustAt = [&](double kt) {
-    std::size_t i = kt < sk.front() ? 0 : (kt > sk.back() ? sk.size() - 2 : sk.size());
-    if (i == sk.size()) return ref(kt) * 1000.0;
-    const double slope = (fk[i + 1] - fk[i]) / (sk[i + 1] - sk[i]);
-    return std::max(0.0, fk[i] + slope * (kt - sk[i])) * 1000.0;
-  };
-  std::vector<double> speeds, rpms, z;
-  for (double kt = 0.0; kt <= std::max(12.0, sk.back()) + 1e-9; kt += 0.5) speeds.push_back(kt * kKnot);
-  for (double r = p_.rpm_min; r < p_.rpm_max + 1e-9; r += (p_.rpm_max - p_.rpm_min) / 36.0) rpms.push_back(r);
-  if (rpms.front() > 0.0) rpms.insert(rpms.begin(), 0.0);
-  for (double s : speeds)
-    for (double r : rpms) z.push_back(thrustAt(s / kKnot) * std::pow(r / p_.rpm_ref, 2));  // eq. 3.11
-  thrust_ = Lookup2D("waterjet_thrust", speeds, rpms, z);
+  thrust_ = makeThrustTable(p_);
+  if (p_.propulsion == UsvPropulsion::Twin && p_.type == UsvModelType::Dynamic3Dof) {
+    allocation_ = std::make_unique<JoystickAllocation>(p_);
+    twin_ = std::make_unique<TwinWaterjets>(p_);
+  }
   rpm_tf_ = TransferFunction("rpm_tf", p_.rpm_num, p_.rpm_den);
   nozzle_lag_ = TransferFunction("nozzle_lag", {1.0}, {p_.nozzle_time_constant, 1.0});
   nozzle_delay_ = TransportDelay(p_.nozzle_delay);
@@ -156,6 +170,7 @@ void UsvModel::reset(const VehicleState& s) {
   surge_delay_.reset(rpm_eq);
   yaw_tf_.reset(std::abs(p_.yaw_kp) > 0 ? lf_.angular_rate.z() / p_.yaw_kp : 0.0);
   for (auto& j : jets_) j = JetState{p_.rpm_min, 0.0, 0.0, 0.0};
+  if (twin_) twin_->reset();
   tau_.setZero();
   tau_wind_.setZero();
   updateOutput(Environment());
@@ -183,8 +198,28 @@ bool UsvModel::setCommand(const UsvCommand& c) {
   if (std::abs(c.surge) > 1.0 || std::abs(c.sway) > 1.0 || std::abs(c.yaw) > 1.0)
     counters_.increment("clamped_commands");
   cmd_ = {std::clamp(c.surge, -1.0, 1.0), std::clamp(c.sway, -1.0, 1.0), std::clamp(c.yaw, -1.0, 1.0)};
+  if (twin_) twin_->setCommands(allocation_->allocate(cmd_));  // the CCPilot's joystick allocation
   return true;
 }
+
+bool UsvModel::setJetCommands(const JetCommands& c) {
+  if (!twin_) {
+    counters_.increment("unsupported_jet_commands");
+    return false;
+  }
+  for (const auto& j : c) {
+    if (!std::isfinite(j.rpm) || !std::isfinite(j.nozzle) || !std::isfinite(j.bucket)) {
+      counters_.increment("rejected_commands");
+      return false;
+    }
+    if (j.rpm < p_.rpm_min || j.rpm > p_.rpm_max || std::abs(j.nozzle) > p_.nozzle_max || std::abs(j.bucket) > 1.0)
+      counters_.increment("clamped_commands");
+  }
+  twin_->setCommands(c);
+  return true;
+}
+
+JetState UsvModel::jet(int i) const { return twin_ ? twin_->state()[i == 0 ? 0 : 1] : jets_[i == 0 ? 0 : 1]; }
 
 void UsvModel::step(double dt, const Environment& env) {
   if (!std::isfinite(dt) || dt <= 0.0 || dt > 10.0) {
@@ -232,8 +267,13 @@ void UsvModel::step(double dt, const Environment& env) {
       const double ur = x(3) - (c * vc.x() + s * vc.y());
       const double vr = x(4) - (-s * vc.x() + c * vc.y());
       const double r = x(5);
-      const double f_total = 2.0 * jetThrust(ur, rpm) * bucket_gain * eff;
-      const Eigen::Vector3d tau(f_total, 0.0, -p_.l_pivot * std::sin(alpha) * f_total);  // eq. 3.13
+      Eigen::Vector3d tau;
+      if (twin_) {
+        tau = twin_->force(ur);  // jet by jet
+      } else {
+        const double f_total = 2.0 * jetThrust(ur, rpm) * bucket_gain * eff;
+        tau = Eigen::Vector3d(f_total, 0.0, -p_.l_pivot * std::sin(alpha) * f_total);  // eq. 3.13
+      }
       // Wind: quadratic drag on the relative air velocity (Fossen-style coefficients, docs/models.md).
       const double uw = c * wind.x() + s * wind.y() - x(3), vw = -s * wind.x() + c * wind.y() - x(4);
       const double q = 0.5 * rho_a * (uw * uw + vw * vw);
@@ -252,6 +292,7 @@ void UsvModel::step(double dt, const Environment& env) {
       tau_wind_ = tw;
       return d;
     };
+    if (twin_) twin_->step(t0, dt);  // the jets' chains, commands held over the step (as the lumped chain above)
     Vec6 x;
     x << lf_.position.x(), lf_.position.y(), lf_.yaw, lf_.velocity.x(), lf_.velocity.y(), lf_.angular_rate.z();
     const int n = substeps(dt, p_.max_step);
@@ -267,6 +308,7 @@ void UsvModel::step(double dt, const Environment& env) {
   lf_.t = t0 + dt;
   const double per_jet = jetThrust(lf_.velocity.x(), rpm) * bucket_gain * eff;
   for (auto& j : jets_) j = JetState{rpm, nozzle, bucket_pos, per_jet};
+  if (twin_) twin_->updateThrust(lf_.velocity.x());
   if (!isFinite(lf_)) {  // cannot happen with validated parameters; never publish NaN if it does
     counters_.increment("non_finite_state");
     lf_ = before;

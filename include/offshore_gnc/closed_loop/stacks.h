@@ -66,6 +66,7 @@ class UsvStack {
   const guidance::GuidanceOutput* guidanceStep() const { return guided_ ? &last_ : nullptr; }
   const std::vector<guidance::SbbObstacle>& obstacles() const { return obstacles_; }
   const sim::UsvSimulation& simulation() const { return sim_; }
+  const control::ActuatorCommand& command() const { return command_; }  // the last control step's
 
  private:
   void perceive(double t);
@@ -83,6 +84,7 @@ class UsvStack {
   std::vector<guidance::SbbObstacle> obstacles_;
   std::optional<VehicleState> estimate_;
   guidance::GuidanceOutput last_;
+  control::ActuatorCommand command_;
   bool guided_ = false;
   long step_ = 0;
   int guidance_every_, control_every_, mission_every_;

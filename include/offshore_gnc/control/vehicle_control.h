@@ -7,10 +7,12 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/control/allocation.h"
+#include "offshore_gnc/control/dynamic_positioning.h"
 #include "offshore_gnc/control/filters.h"
 #include "offshore_gnc/control/pid.h"
 #include "offshore_gnc/models/reference.h"
@@ -28,10 +30,7 @@ struct UsvControlParams {
   PidGains yaw{5.236, 0.071, 15.084, 1.0, 0.3};          // Table 4.1, output: normalised yaw deflection
   double max_surge_force = 4000.0;                       // force at full joystick deflection [N]
   FilterParams filter;                                   // eq. 4.15-4.16
-  double dp_speed_gain = 0.1;                            // station keeping: surge/sway speed per metre [1/s]
-  double dp_max_speed = 0.5;                             // [m/s]
-  double dp_sway_gain = 0.3;                             // sway deflection per m/s of sway speed error
-  double dp_radius = 3.0;                                // beyond it station keeping points the bow at the point [m]
+  DpParams dp;                                           // station keeping (dynamic_positioning.h)
   // The jets steer only with thrust: at zero surge the bucket is neutral and the nozzles turn nothing. While
   // following a path with the bow more than 30 deg off, the joystick surge is at least this (full range 1).
   double turn_thrust = 0.3;
@@ -48,11 +47,14 @@ class UsvController {
   JoystickOut update(const VehicleState& s, const MotionReference& r);  // never NaN; bad input -> neutral
   const Counters& counters() const { return counters_; }
   double filteredHeading() const { return yaw_f_; }
+  const DpOutput& stationKeeping() const { return dp_out_; }  // the last station-keeping step's figures
 
  private:
   UsvControlParams p_;
   Pid surge_, yaw_;
-  FeedbackFilter f_u_, f_yaw_;
+  FeedbackFilter f_u_, f_yaw_, f_r_;  // surge speed, heading (unwrapped), yaw rate
+  std::unique_ptr<DynamicPositioning> dp_;
+  DpOutput dp_out_;
   double yaw_unwrapped_ = 0.0, yaw_prev_ = 0.0, yaw_f_ = 0.0, u_f_prev_ = 0.0;
   bool primed_ = false;
   Counters counters_;

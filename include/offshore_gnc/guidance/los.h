@@ -1,7 +1,7 @@
 #pragma once
 // LOS path following (thesis 4.2.2, eq. 4.9-4.14): path-tangential angle, cross-track error, look-ahead steering
 // with integral action (ILOS, anti-windup) and an optional adaptive crab-angle estimate (ALOS, Fossen 2023
-// eq. 12.108), waypoint switching on a circle (USV) or sphere (AUV) of acceptance plus a passed-waypoint rule,
+// eq. 12.108, its update scaled by the speed), waypoint switching on a circle (USV) or sphere (AUV) of acceptance plus a passed-waypoint rule,
 // and station keeping at the end of the path. ROS-free; NED, radians.
 #include <Eigen/Core>
 
@@ -23,7 +23,7 @@ struct LosParams {
   double ki = 0.001;               // integral gain [1/(m s)] (Table 4.1 LOS)
   double integral_limit = 0.35;    // |Ki * int e| bound: at most ~20 deg of integral steering (anti-windup) [rad]
   bool adaptive_crab = true;       // estimate the crab (sideslip) angle beta (ALOS)
-  double crab_gain = 0.002;        // gamma of the beta estimate update [1/(m s)]
+  double crab_gain = 0.0067;       // gamma of the beta estimate update, per m/s of speed (Fossen's ALOS) [1/m^2]
   double crab_limit = 0.6;         // |beta_hat| bound [rad]
   double acceptance_radius = 16.0; // R: circle (USV, 2 L_USV) or sphere (AUV) of acceptance [m]
   bool sphere = false;             // 3-D sphere of acceptance (AUV) instead of the 2-D circle

@@ -1,16 +1,22 @@
 #pragma once
 // Twin-waterjet USV model (thesis 3.2, Publications III and IV), ROS-free.
 //
-// Full model (UsvModelType::Dynamic3Dof): joystick -> 1-D lookups -> engine rpm transfer function (eq. 3.24)
-// and nozzle delay + first-order lag (eq. 3.25) -> thrust per jet from a 2-D lookup (surge speed x rpm,
-// Table 3.1 + affinity law eq. 3.11) -> nozzle efficiency (eq. 3.12) -> tau (eq. 3.13) -> 3-DOF rigid body
-// M nu' + D(nu_r) nu_r = tau + tau_wind (eq. 3.3-3.10, Tables 3.3, 3.4), integrated with RK4.
+// Full model (UsvModelType::Dynamic3Dof): 3-DOF rigid body M nu' + D(nu_r) nu_r = tau + tau_wind (eq. 3.3-3.10,
+// Tables 3.3, 3.4), integrated with RK4, driven by the waterjets:
+// - UsvPropulsion::Twin (default): each jet on its own (models/waterjets.h: rpm chain, nozzle, reversing bucket,
+//   side force), the joystick mapped onto both by the CCPilot's allocation (models/joystick_allocation.h), or
+//   per-jet set-points (setJetCommands, as the jets' CAN frames carry them);
+// - UsvPropulsion::Lumped (the thesis' eq. 3.13): joystick -> 1-D lookups -> engine rpm transfer function
+//   (eq. 3.24) and nozzle delay + first-order lag (eq. 3.25) -> thrust per jet from a 2-D lookup (surge speed x
+//   rpm, Table 3.1 + affinity law eq. 3.11) -> nozzle efficiency (eq. 3.12) -> tau = [2F, 0, -l_pivot sin(alpha)
+//   2F]: no sway force and, with the bucket neutral, no moment.
 // Simple model (UsvModelType::Nomoto): the same rpm and nozzle chains, then the identified surge transfer
 // function u/rpm (eq. 3.23, 0.8 s delay) and Nomoto's r/P_nozzle (eq. 3.2), Table 3.2.
 // Sign conventions: body x forward, y starboard, z down; yaw clockwise from north. Joystick yaw +1 turns to
 // starboard (r > 0); as in eq. 3.25 the nozzle position is the negated lookup value, so P_nozzle < 0 turns to
 // starboard (Nomoto K_p < 0 in Table 3.2) and tau_r = -l_pivot sin(alpha) F E.
 #include <array>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,14 +25,17 @@
 #include "offshore_gnc/models/blocks.h"
 #include "offshore_gnc/models/environment.h"
 #include "offshore_gnc/models/state.h"
+#include "offshore_gnc/models/waterjets.h"
 
 namespace offshore_gnc {
 namespace models {
 
 enum class UsvModelType { Dynamic3Dof, Nomoto };
+enum class UsvPropulsion { Twin, Lumped };
 
 struct UsvParams {
   UsvModelType type = UsvModelType::Dynamic3Dof;
+  UsvPropulsion propulsion = UsvPropulsion::Twin;  // the Nomoto model always uses the lumped chains
   // Table 3.3
   double mass = 3500.0, m_pt = 1100.0, m_hull = 2400.0, length = 8.0, l_pivot = 2.40, l_pt = 2.16;
   double kappa = 0.70, c_g = 0.30, i_cor = 0.6, x_g = 0.0425;
@@ -49,6 +58,12 @@ struct UsvParams {
   // Reversing bucket (assumed): bucket = clamp(surge / bucket_band, -1, 1); astern thrust is
   // reverse_efficiency x ahead thrust. Zero surge = bucket neutral = no net thrust at idle.
   double bucket_band = 0.1, reverse_efficiency = 0.45;
+  // Twin jets (assumed for the 8 m hull, docs/models.md): jets +-jet_y from the centreline at x = -l_pivot; a
+  // bucket moves at most bucket_rate per second (full ahead to full astern, 2 units, in 2 s).
+  double jet_y = 0.45, bucket_rate = 1.0;
+  // The joystick allocation runs the engines at least at the rpm of yaw_rpm_share x |yaw| on the surge axis (the
+  // nozzles' moment grows with the thrust; the buckets keep the surge force): steering at any speed.
+  double yaw_rpm_share = 0.8;
   // Engine rpm transfer function (eq. 3.24) and nozzle chain (eq. 3.25)
   std::vector<double> rpm_num{0.317, 2.793, 1.828}, rpm_den{1.0, 3.499, 1.828};
   double nozzle_delay = 0.25, nozzle_time_constant = 0.1;
@@ -71,16 +86,16 @@ struct UsvCommand {
   double surge = 0.0, sway = 0.0, yaw = 0.0;
 };
 
-struct JetState {
-  double rpm = 0.0;     // engine speed [rev/min]
-  double nozzle = 0.0;  // P_nozzle, -10000..10000 (< 0 turns to starboard)
-  double bucket = 0.0;  // -1 full astern .. +1 full ahead
-  double thrust = 0.0;  // this jet's thrust along its axis after nozzle efficiency and bucket [N]
-};
+
+// The 2-D thrust table of one jet (Table 3.1 over surge speed, linearly extrapolated, x the affinity law eq. 3.11).
+Lookup2D makeThrustTable(const UsvParams& p);
+
+class JoystickAllocation;
 
 class UsvModel {
  public:
   explicit UsvModel(const UsvParams& p);  // validates (ConfigError)
+  ~UsvModel();
   // Low-frequency state (wave motion removed), jets at idle with bucket and nozzle neutral, and the command
   // reset to neutral. Velocities are kept (initial speed allowed) and the engine chain is at equilibrium.
   void reset(const VehicleState& s);
@@ -91,6 +106,9 @@ class UsvModel {
   // Accepts a command for the next steps. NaN/inf: rejected, counted ("rejected_commands"), previous kept.
   // Outside [-1, 1]: clamped and counted ("clamped_commands").
   bool setCommand(const UsvCommand& c);
+  // Per-jet set-points (twin propulsion; the jets' own CAN frames). NaN: rejected and counted; outside the
+  // ranges: clamped and counted. With lumped propulsion: rejected ("unsupported_jet_commands").
+  bool setJetCommands(const JetCommands& c);
   // Advance dt (> 0, finite; otherwise counted as "rejected_steps" and nothing happens).
   void step(double dt, const Environment& env);
   bool step(double dt, const UsvCommand& c, const Environment& env) {
@@ -101,7 +119,7 @@ class UsvModel {
   // Reported state: low-frequency motion + wave-frequency motion (what the sensors see).
   const VehicleState& state() const { return out_; }
   const VehicleState& lowFrequencyState() const { return lf_; }
-  JetState jet(int i) const { return jets_[i == 0 ? 0 : 1]; }  // 0 port, 1 starboard
+  JetState jet(int i) const;  // 0 port, 1 starboard
   const Eigen::Vector3d& tau() const { return tau_; }          // propulsion [X N, Y N, N Nm] last step
   const Eigen::Vector3d& tauWind() const { return tau_wind_; }
   const UsvCommand& command() const { return cmd_; }
@@ -123,6 +141,8 @@ class UsvModel {
   Lookup2D thrust_;
   TransferFunction rpm_tf_, nozzle_lag_, surge_tf_, yaw_tf_;
   TransportDelay nozzle_delay_, surge_delay_;
+  std::unique_ptr<JoystickAllocation> allocation_;  // twin propulsion only
+  std::unique_ptr<TwinWaterjets> twin_;
   UsvCommand cmd_;
   VehicleState lf_, out_;
   std::array<JetState, 2> jets_;

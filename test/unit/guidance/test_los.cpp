@@ -75,10 +75,19 @@ TEST(Los, AdaptiveCrabGrowsWithStandingError) {
   LosGuidance g(p);
   g.setPath({V3(0, 0, 0), V3(1000, 0, 0)});
   LosOutput o;
-  for (int i = 0; i < 100; ++i) o = g.update(at(10, 1.0), 0.1);
+  auto moving = [](double n, double e, double speed) {
+    VehicleState s = at(n, e);
+    s.velocity.x() = speed;
+    return s;
+  };
+  for (int i = 0; i < 100; ++i) o = g.update(moving(10, 1.0, 1.5), 0.1);
   EXPECT_GT(o.crab_angle, 0.0);  // drift to starboard -> beta_hat > 0 -> heading further to port
   EXPECT_LT(o.desired_heading, std::atan(-0.1));
-  for (int i = 0; i < 100000; ++i) o = g.update(at(10, 50.0), 0.1);
+  const double after_moving = o.crab_angle;
+  // The update scales with the speed (Fossen's ALOS): a boat at rest learns nothing from its standing error.
+  for (int i = 0; i < 100; ++i) o = g.update(moving(10, 1.0, 0.0), 0.1);
+  EXPECT_DOUBLE_EQ(o.crab_angle, after_moving);
+  for (int i = 0; i < 100000; ++i) o = g.update(moving(10, 50.0, 1.5), 0.1);
   EXPECT_NEAR(o.crab_angle, p.crab_limit, 1e-12);
 }
 
