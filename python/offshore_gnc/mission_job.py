@@ -288,6 +288,8 @@ def run(a):
     ms_cfg = sc.get("mission", {}) or {}
     expect = ms_cfg.get("expect", "target_reached")
     max_sim = a.max_sim_time or float(ms_cfg.get("max_sim_time", 900.0))
+    hold_time = float(ms_cfg.get("hold_time", 60.0))  # held at the target this long before success
+    arrived_t = None
     name = sc.get("name", os.path.splitext(os.path.basename(a.scenario))[0])
     out = os.path.abspath(a.out or os.path.join(REPO, "reports", "%s-%s" % (
         name, datetime.datetime.now().strftime("%Y%m%d-%H%M%S"))))
@@ -369,8 +371,10 @@ def run(a):
                     break
                 continue
             if expect == "target_reached" and u.get("finished") and u.get("success"):
-                outcome = {"success": True, "reason": "USV holds position at the target: " + u.get("detail", "")}
-                break
+                arrived_t = sim_t if arrived_t is None else arrived_t
+                if sim_t >= arrived_t + hold_time:
+                    outcome = {"success": True, "reason": "USV holds position at the target: " + u.get("detail", "")}
+                    break
             if av.get("phase") == "NO_TARGET":
                 outcome = {"success": expect == "no_target",
                            "reason": "AUV finished its coverage without a detection; USV %s" % u.get("phase")}

@@ -9,6 +9,7 @@ MAE of the LOS cross-track error while following a path). The AUV's navigation: 
 estimate /auv/odom against its ground truth, and the USBL fixes it received (/auv/usbl/fix, rejected ones counted).
 """
 import argparse
+import bisect
 import json
 import math
 import os
@@ -22,6 +23,7 @@ THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4
 
 MODE_FOLLOW_PATH = 1  # GuidanceStatus.MODE_FOLLOW_PATH (for the plots; the metrics tool filters the same)
 QUALITY_OK = 0  # UsblFix.QUALITY_OK: the only fixes navigation may use
+REFERENCE_HOLD = 2  # GuidanceStatus.REFERENCE_HOLD
 
 
 def tracking_metrics(path, selector=None):
@@ -202,6 +204,41 @@ def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_st
     return reports
 
 
+def _percentile(values, q):
+    """Nearest-rank percentile, as closed_loop/mission.cpp (NaN without samples)."""
+    v = sorted(values)
+    if not v:
+        return float("nan")
+    return v[min(max(int(math.ceil(q * len(v))), 1), len(v)) - 1]
+
+
+def _at(track, t):
+    """The track sample nearest in time to t (track sorted by time)."""
+    i = bisect.bisect_left([p[0] for p in track], t)
+    return min(track[max(i - 1, 0):i + 1], key=lambda p: abs(p[0] - t))
+
+
+def station_keeping(usv_track, mission_status, guidance_status):
+    """docs/mission.md: (usv_wait_drift_m, usv_hold_p95_m). The wait: from the first STATION_KEEPING status until
+    the first TRANSIT, the largest distance from where it began. The hold: from the first ARRIVED status, each
+    guidance sample that holds a point, the distance of the true position from that point; its 95th percentile."""
+    wait = [t for t, m in mission_status if m.phase == "STATION_KEEPING"]
+    transit = next((t for t, m in mission_status if m.phase == "TRANSIT"), float("inf"))
+    drift = float("nan")
+    if wait and usv_track and wait[0] < transit:
+        during = [p for p in usv_track if wait[0] <= p[0] <= transit]
+        if during:
+            drift = max(math.hypot(n - during[0][1], e - during[0][2]) for _, n, e, _ in during)
+    arrived = next((t for t, m in mission_status if m.phase == "ARRIVED"), None)
+    errors = []
+    if arrived is not None and usv_track:
+        for t, m in guidance_status:
+            if t >= arrived and m.reference_mode == REFERENCE_HOLD:
+                _, n, e, _ = _at(usv_track, t)
+                errors.append(math.hypot(n - m.reference_point.x, e - m.reference_point.y))
+    return drift, _percentile(errors, 0.95)
+
+
 def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=None, planned_faults=()):
     os.makedirs(out, exist_ok=True)
     sc = yaml.safe_load(open(scenario)) if scenario else {}
@@ -225,6 +262,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     fixes_ok = [m for m in fixes if m.quality == QUALITY_OK]
     usv_xte = [(t, m.cross_track_error) for t, m in u["/usv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
     auv_xte = [(t, m.cross_track_error) for t, m in a["/auv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
+    wait_drift, hold_p95 = station_keeping(usv_track, u["/usv/mission/status"], u["/usv/guidance/status"])
     us = tracking_metrics(usv_bag or "", "/usv/guidance/status")
     # the path followed: the planner's when it published one (SBB waypoints included), else the mission's
     # (the last one with waypoints: the mission ends by sending an empty path)
@@ -287,6 +325,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         # where the USV really ended, against the true target (the stand-off is part of this distance)
         "usv_final_distance_to_target_m": (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
                                                for tt in targets_true) if usv_track and targets_true else float("nan")),
+        "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95,
         "sim_time_s": sim_time, "wall_time_s": wall_time_s,
         "stacks_died": {v: round(t, 1) for v, t in died.items()},
         # how far the surviving vehicle moved after the other's stack died (safe behaviour = holding position)
@@ -395,6 +434,8 @@ def _summary(out, m, scenario):
             m["auv_nav_source"], _fmt(m["auv_nav_rmse_m"], " m"), _fmt(m["auv_nav_max_m"], " m")),
         "| USBL fixes | %d received, %d rejected | |" % (m["usbl_fixes_received"], m["usbl_fixes_rejected"]),
         "| USV final distance to the true target | %s | |" % _fmt(m["usv_final_distance_to_target_m"], " m"),
+        "| USV drift while waiting for the target | %s | |" % _fmt(m["usv_wait_drift_m"], " m"),
+        "| USV hold at the target, 95th percentile | %s | |" % _fmt(m["usv_hold_p95_m"], " m"),
         "| simulated time | %s | |" % _fmt(m["sim_time_s"], " s"),
         "| wall time | %s | |" % _fmt(m["wall_time_s"], " s"),
         "", "Final phases: USV %s, AUV %s." % (m["usv_final_phase"], m["auv_final_phase"]), "",

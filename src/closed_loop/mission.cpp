@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -23,6 +24,14 @@ void record(VehicleRecord& r, const VehicleState& truth, long step, const guidan
   if (g->boxes_changed) r.boxes = pipeline.plan().boxes;
 }
 
+// Nearest-rank percentile (as python/offshore_gnc/report.py); NaN for no samples.
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return kNaN;
+  std::sort(v.begin(), v.end());
+  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::clamp<std::size_t>(k, 1, v.size()) - 1];
+}
+
 void finish(VehicleRecord& r, const std::string& phase) {
   std::vector<double> e;
   for (const auto& s : r.xte) e.push_back(s.y());
@@ -41,6 +50,7 @@ MissionConfig loadMission(const std::string& config_dir, const std::string& scen
   const YAML::Node m = YAML::LoadFile(scenario_file)["mission"];
   if (m && m["expect"]) c.expect = m["expect"].as<std::string>();
   if (m && m["max_sim_time"]) c.max_sim_time = m["max_sim_time"].as<double>();
+  if (m && m["hold_time"]) c.hold_time = m["hold_time"].as<double>();
   if (c.expect != "target_reached" && c.expect != "no_target")
     throw ConfigError("scenario '" + scenario_file + "': mission.expect '" + c.expect +
                       "' is not one of: target_reached, no_target");
@@ -55,6 +65,11 @@ MissionResult runMission(const MissionConfig& cfg) {
   std::optional<std::pair<double, Eigen::Vector3d>> in_flight;  // /target on its way through the relay
   long step = 0;
   double t = 0.0;
+  std::optional<Eigen::Vector2d> wait_start;  // where the USV started waiting for the target
+  bool target_delivered = false;
+  std::optional<double> arrived;              // when the USV reached the target
+  std::vector<double> hold_error;
+  res.usv_wait_drift_m = kNaN;
   res.reason = "simulated time limit reached";
   for (; t <= cfg.max_sim_time; ++step) {
     usv.step();
@@ -68,13 +83,25 @@ MissionResult runMission(const MissionConfig& cfg) {
     if (in_flight && t >= in_flight->first) {
       usv.onTarget(in_flight->second.head<2>(), t);
       in_flight.reset();
+      target_delivered = true;
+    }
+    const Eigen::Vector2d usv_ne = usv.truth().position.head<2>();
+    if (!target_delivered && usv.mission().phase() == mission::UsvPhase::StationKeeping) {
+      if (!wait_start) wait_start = usv_ne, res.usv_wait_drift_m = 0.0;
+      res.usv_wait_drift_m = std::max(res.usv_wait_drift_m, (usv_ne - *wait_start).norm());
     }
     record(res.usv, usv.truth(), step, usv.guidanceStep(), usv.guidance());
     record(res.auv, auv.truth(), step, auv.guidanceStep(), auv.guidance());
     if (cfg.expect == "target_reached" && usv.mission().finished()) {
-      res.success = true;
-      res.reason = "USV holds position at the target: " + usv.mission().detail();
-      break;
+      if (!arrived) arrived = t;
+      const auto* g = usv.guidanceStep();
+      if (g && g->reference.mode == ReferenceMode::kHold)
+        hold_error.push_back((usv_ne - g->reference.point.head<2>()).norm());
+      if (t >= *arrived + cfg.hold_time) {
+        res.success = true;
+        res.reason = "USV holds position at the target: " + usv.mission().detail();
+        break;
+      }
     }
     if (auv.mission().phase() == mission::AuvPhase::NoTarget) {
       res.success = cfg.expect == "no_target";
@@ -85,6 +112,7 @@ MissionResult runMission(const MissionConfig& cfg) {
   finish(res.usv, mission::toString(usv.mission().phase()));
   finish(res.auv, mission::toString(auv.mission().phase()));
   res.sim_time_s = t;
+  res.usv_hold_p95_m = percentile(hold_error, 0.95);
 
   const auto& targets = cfg.scenario.world.targets;
   res.target_error_m = res.usv_final_distance_to_target_m = kNaN;

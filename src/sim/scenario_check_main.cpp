@@ -23,7 +23,7 @@ void checkMission(const std::string& path) {
   const YAML::Node m = YAML::LoadFile(path)["mission"];
   if (!m) return;
   if (!m.IsMap()) throw ConfigError("scenario '" + path + "': key 'mission' must be a mapping");
-  const std::set<std::string> allowed{"expect", "max_sim_time"};
+  const std::set<std::string> allowed{"expect", "max_sim_time", "hold_time"};
   for (const auto& kv : m) {
     const std::string k = kv.first.as<std::string>();
     if (!allowed.count(k)) throw ConfigError("scenario '" + path + "': key 'mission." + k + "' is not a known key (typo?)");
@@ -34,6 +34,7 @@ void checkMission(const std::string& path) {
       throw ConfigError("scenario '" + path + "': key 'mission.expect' = '" + e + "' is not one of: target_reached no_target");
   }
   if (m["max_sim_time"]) requireRange("mission.max_sim_time", m["max_sim_time"].as<double>(), 10.0, 86400.0);
+  if (m["hold_time"]) requireRange("mission.hold_time", m["hold_time"].as<double>(), 0.0, 3600.0);
 }
 
 constexpr double kOriginTolerance = 5.0;  // [m] GPS-grade agreement; beyond it every position would be offset

@@ -24,6 +24,7 @@ struct MissionConfig {
   AuvStackConfig auv;
   std::string expect = "target_reached";  // or no_target (the scenario's mission section)
   double max_sim_time = 900.0;            // [s]
+  double hold_time = 60.0;                // success once the USV has held this long at the target [s]
   double relay_latency = 0.0;             // simulated seconds from the AUV's /target to the USV's [s]
 };
 // The scenario, its mission section and the vehicles' configuration files under config_dir.
@@ -48,6 +49,9 @@ struct MissionResult {
   double detection_time_s = 0.0;          // from the start of the coverage (NaN without a detection)
   double min_clearance_m = 0.0;           // the USV's closest approach to an obstacle's surface (NaN without one)
   double usv_final_distance_to_target_m = 0.0;
+  // Station keeping (docs/mission.md): the largest distance from where the USV started waiting until the target
+  // came, and the 95th percentile distance from its hold point over the hold at the target (NaN without one).
+  double usv_wait_drift_m = 0.0, usv_hold_p95_m = 0.0;
   double sim_time_s = 0.0, wall_time_s = 0.0;
 };
 

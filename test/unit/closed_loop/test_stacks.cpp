@@ -55,6 +55,10 @@ TEST(RosFreeMission, TheDefaultMissionSucceedsInOneProcess) {
   EXPECT_GT(r.usv.metrics.samples, 100u);
   EXPECT_GT(r.auv.metrics.samples, 100u);
   EXPECT_LT(r.usv_final_distance_to_target_m, 6.0);
+  // Twin-jet DP (measured 3.4 m waiting, 3.8 m holding; the lumped jet drifted about 50 m while waiting).
+  EXPECT_LT(r.usv_wait_drift_m, 8.0);
+  EXPECT_LT(r.usv_hold_p95_m, 8.0);
+  EXPECT_GE(r.sim_time_s, r.detection_time_s + cfg.hold_time);  // held at the target before success
 }
 
 TEST(RosFreeMission, NoTargetScenarioEndsWithoutOne) {
