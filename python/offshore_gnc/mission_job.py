@@ -288,8 +288,7 @@ def run(a):
     ms_cfg = sc.get("mission", {}) or {}
     expect = ms_cfg.get("expect", "target_reached")
     max_sim = a.max_sim_time or float(ms_cfg.get("max_sim_time", 900.0))
-    hold_time = float(ms_cfg.get("hold_time", 60.0))  # held at the target this long before success
-    arrived_t = None
+    hold_time = float(ms_cfg.get("hold_time", 60.0))  # on station at the target this long before success
     name = sc.get("name", os.path.splitext(os.path.basename(a.scenario))[0])
     out = os.path.abspath(a.out or os.path.join(REPO, "reports", "%s-%s" % (
         name, datetime.datetime.now().strftime("%Y%m%d-%H%M%S"))))
@@ -370,11 +369,12 @@ def run(a):
                 if outcome:
                     break
                 continue
-            if expect == "target_reached" and u.get("finished") and u.get("success"):
-                arrived_t = sim_t if arrived_t is None else arrived_t
-                if sim_t >= arrived_t + hold_time:
-                    outcome = {"success": True, "reason": "USV holds position at the target: " + u.get("detail", "")}
-                    break
+            # success: on station at the target (the USV mission says since when) for hold_time
+            on_station = u.get("on_station_since")
+            if expect == "target_reached" and u.get("finished") and u.get("success") and on_station is not None \
+                    and sim_t >= on_station + hold_time:
+                outcome = {"success": True, "reason": "USV holds position at the target: " + u.get("detail", "")}
+                break
             if av.get("phase") == "NO_TARGET":
                 outcome = {"success": expect == "no_target",
                            "reason": "AUV finished its coverage without a detection; USV %s" % u.get("phase")}
@@ -382,6 +382,9 @@ def run(a):
             if sim_t > max_sim:
                 outcome = {"success": False, "reason": "simulated time limit %.0f s reached (AUV %s, USV %s)" % (
                     max_sim, av.get("phase"), u.get("phase"))}
+                if u.get("finished") and u.get("success") and on_station is None:
+                    outcome["reason"] += ": the USV arrived but never came on station (within the mission's " \
+                                         "station_radius of its station point)"
                 break
             if time.time() - t0 > 30 and sim_t == 0.0:
                 outcome = {"success": False, "reason": "no simulated time after 30 s: simulators not running"}

@@ -220,8 +220,9 @@ def _at(track, t):
 
 def station_keeping(usv_track, mission_status, guidance_status):
     """docs/mission.md: (usv_wait_drift_m, usv_hold_p95_m). The wait: from the first STATION_KEEPING status until
-    the first TRANSIT, the largest distance from where it began. The hold: from the first ARRIVED status, each
-    guidance sample that holds a point, the distance of the true position from that point; its 95th percentile."""
+    the first TRANSIT, the largest distance from where it began. The hold: from when the USV mission reports it on
+    station at the target (on_station_since) to the end of the run (the job ends hold_time later), each guidance
+    sample that holds a point, the distance of the true position from that point; its 95th percentile."""
     wait = [t for t, m in mission_status if m.phase == "STATION_KEEPING"]
     transit = next((t for t, m in mission_status if m.phase == "TRANSIT"), float("inf"))
     drift = float("nan")
@@ -229,11 +230,12 @@ def station_keeping(usv_track, mission_status, guidance_status):
         during = [p for p in usv_track if wait[0] <= p[0] <= transit]
         if during:
             drift = max(math.hypot(n - during[0][1], e - during[0][2]) for _, n, e, _ in during)
-    arrived = next((t for t, m in mission_status if m.phase == "ARRIVED"), None)
+    on_station = next((m.on_station_since for t, m in mission_status
+                       if m.phase == "ARRIVED" and m.on_station_since == m.on_station_since), None)
     errors = []
-    if arrived is not None and usv_track:
+    if on_station is not None and usv_track:
         for t, m in guidance_status:
-            if t >= arrived and m.reference_mode == REFERENCE_HOLD:
+            if t >= on_station and m.reference_mode == REFERENCE_HOLD:
                 _, n, e, _ = _at(usv_track, t)
                 errors.append(math.hypot(n - m.reference_point.x, e - m.reference_point.y))
     return drift, _percentile(errors, 0.95)

@@ -223,7 +223,8 @@ def main():
     def on_status(m):
         changed = m.phase != last.get("phase")
         last.update(vehicle=m.vehicle or a.vehicle, phase=m.phase, distance_to_go=m.distance_to_go,
-                    finished=m.finished, success=m.success, detail=m.detail, stamp=m.header.stamp.to_sec())
+                    finished=m.finished, success=m.success, detail=m.detail, stamp=m.header.stamp.to_sec(),
+                    on_station_since=m.on_station_since if m.on_station_since == m.on_station_since else None)
         if changed:
             emit(snapshot())
 

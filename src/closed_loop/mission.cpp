@@ -67,7 +67,6 @@ MissionResult runMission(const MissionConfig& cfg) {
   double t = 0.0;
   std::optional<Eigen::Vector2d> wait_start;  // where the USV started waiting for the target
   bool target_delivered = false;
-  std::optional<double> arrived;              // when the USV reached the target
   std::vector<double> hold_error;
   res.usv_wait_drift_m = kNaN;
   res.reason = "simulated time limit reached";
@@ -91,13 +90,26 @@ MissionResult runMission(const MissionConfig& cfg) {
       res.usv_wait_drift_m = std::max(res.usv_wait_drift_m, (usv_ne - *wait_start).norm());
     }
     record(res.usv, usv.truth(), step, usv.guidanceStep(), usv.guidance());
+    if (step % 5 == 0) {
+      const VehicleState& x = usv.truth();
+      const MotionReference& ref = usv.lastGuidance().reference;
+      const control::JoystickOut& j = usv.command().joystick;
+      const auto& los = usv.lastGuidance().los;
+      const control::DpOutput& dp = usv.control().usvController()->stationKeeping();
+      res.usv_trace.push_back({x.t, x.position.x(), x.position.y(), x.yaw, x.velocity.x(), x.velocity.y(),
+                               x.angular_rate.z(), static_cast<double>(ref.mode), ref.point.x(), ref.point.y(),
+                               ref.heading, los.mode == guidance::Mode::kFollowPath ? los.cross_track_error : kNaN,
+                               j.surge, j.sway, j.yaw, dp.heading, dp.steady_force.x(), dp.steady_force.y(),
+                               dp.distance});
+    }
     record(res.auv, auv.truth(), step, auv.guidanceStep(), auv.guidance());
-    if (cfg.expect == "target_reached" && usv.mission().finished()) {
-      if (!arrived) arrived = t;
+    // success: on station at the target (the USV mission says since when) for hold_time, as the main job
+    const double on_station = usv.mission().onStationSince();
+    if (cfg.expect == "target_reached" && usv.mission().finished() && !std::isnan(on_station)) {
       const auto* g = usv.guidanceStep();
       if (g && g->reference.mode == ReferenceMode::kHold)
         hold_error.push_back((usv_ne - g->reference.point.head<2>()).norm());
-      if (t >= *arrived + cfg.hold_time) {
+      if (t >= on_station + cfg.hold_time) {
         res.success = true;
         res.reason = "USV holds position at the target: " + usv.mission().detail();
         break;
@@ -109,6 +121,8 @@ MissionResult runMission(const MissionConfig& cfg) {
       break;
     }
   }
+  if (!res.success && usv.mission().finished() && std::isnan(usv.mission().onStationSince()))
+    res.reason += ": the USV arrived but never came on station (within the mission's station_radius)";
   finish(res.usv, mission::toString(usv.mission().phase()));
   finish(res.auv, mission::toString(auv.mission().phase()));
   res.sim_time_s = t;

@@ -1,6 +1,7 @@
 // mission_rosfree: the co-operative mission ROS-free in one process (closed_loop::runMission), on the same
 // scenario, configuration files and seeds as ./scripts/mission. Prints one JSON object with the figures the
-// mission report gives (metrics.json's keys); --out DIR also writes the tracks as CSV.
+// mission report gives (metrics.json's keys); --out DIR also writes the tracks as CSV, and the USV's trace
+// (usv_trace.csv: truth, guidance's reference, the joystick command) for tuning.
 //   mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--config DIR] [--relay-latency S] [--out DIR]
 #include <cmath>
 #include <cstdio>
@@ -67,6 +68,10 @@ int main(int argc, char** argv) {
     if (!out.empty()) {
       writeCsv(out + "/usv_truth.csv", "t,north,east,down", r.usv.truth);
       writeCsv(out + "/auv_truth.csv", "t,north,east,down", r.auv.truth);
+      std::ofstream f(out + "/usv_trace.csv");
+      f << closed_loop::kUsvTraceHeader << "\n";
+      for (const auto& row : r.usv_trace)
+        for (std::size_t i = 0; i < row.size(); ++i) f << row[i] << (i + 1 < row.size() ? "," : "\n");
     }
     std::printf(
         "{\"success\": %s, \"outcome\": %s, \"usv_rmse_m\": %s, \"usv_sd_m\": %s, \"usv_mae_m\": %s, "

@@ -11,7 +11,10 @@ ClosedLoopConfig usvStraight(bool adaptive_crab) {
   // 5 waypoints, 40 m apart, heading north; the current sets east (across the path).
   for (int i = 0; i < 5; ++i) c.path.emplace_back(40.0 * i, 0.0, 0.0);
   c.current = Eigen::Vector2d(0.0, 0.2);
-  c.usv = [adaptive_crab](UsvStackConfig& u) { u.guidance.los.adaptive_crab = adaptive_crab; };
+  c.usv = [adaptive_crab](UsvStackConfig& u) {
+    u.guidance.los.adaptive_crab = adaptive_crab;  // false: no crab compensation at all (the thesis' eq. 4.9)
+    u.guidance.los.measured_crab = u.guidance.los.measured_crab && adaptive_crab;
+  };
   c.max_time = 400.0;
   return c;
 }

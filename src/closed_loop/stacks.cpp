@@ -181,7 +181,10 @@ void UsvStack::step() {
   if (step_ % guidance_every_ == 0 && guidance_.update(t, guidance_every_ * cfg_.sim.dt, last_)) {
     guided_ = true;
     control_.onReference(last_.reference, t);
-    if (cfg_.mission_enabled) mission_.onGuidance(last_.los.mode, last_.los.distance_to_go, t);
+    if (cfg_.mission_enabled)
+      mission_.onGuidance(last_.los.mode, last_.los.distance_to_go, t,
+                          last_.reference.mode == ReferenceMode::kHold ? Eigen::Vector2d(last_.reference.point.head<2>())
+                                                                       : mission::kNoPoint);
   }
   if (step_ % control_every_ == 0) {
     command_ = control_.update(t);

@@ -58,6 +58,8 @@ const ParamTable<FilterParams>& FilterParams::table() {
   static const ParamTable<P> t = ParamTable<P>()
       .number("tf", &P::tf, 0.0, 100.0, "s", "low-pass time constant T_f (eq. 4.15; 0 = off)")
       .number("xi", &P::xi, 0.0, 1.0, "", "notch design parameter xi (eq. 4.16): the depth at the centre")
+      .number("notch_width", &P::notch_width, 0.01, 1.0, "",
+              "notch width zeta: (s^2 + 2 xi zeta w s + w^2) / (s^2 + 2 zeta w s + w^2); 1 = eq. 4.16")
       .numbers("notch_w", &P::notch_w, 0, 1e-4, 1000.0, "rad/s", "centre frequencies of the notches (empty = off)");
   return t;
 }
@@ -68,8 +70,9 @@ FeedbackFilter::FeedbackFilter(const FilterParams& p, double dt) : dt_(dt) {
   p.validate();
   requirePositive("filter/dt", dt);
   if (p.tf > 0.0) sections_.push_back(Biquad::tustin(0, 0, 1, 0, p.tf, 1, dt, 1.0 / p.tf));  // eq. 4.15
-  for (double w : p.notch_w)                                                                  // eq. 4.16
-    sections_.push_back(Biquad::tustin(1, 2 * p.xi * w, w * w, 1, 2 * w, w * w, dt, w));
+  const double z = p.notch_width;
+  for (double w : p.notch_w)  // eq. 4.16 for notch_width 1
+    sections_.push_back(Biquad::tustin(1, 2 * p.xi * z * w, w * w, 1, 2 * z * w, w * w, dt, w));
 }
 
 double FeedbackFilter::step(double x) {

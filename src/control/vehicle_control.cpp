@@ -34,6 +34,8 @@ const ParamTable<UsvControlParams>& UsvControlParams::table() {
       .number("max_surge_force", &P::max_surge_force, 1e-3, 1e7, "N", "surge force at full joystick deflection")
       .nest("filter/", &P::filter, FilterParams::table())
       .nest("dp/", &P::dp, DpParams::table())
+      .flag("turn_first", &P::turn_first,
+            "path following: the surge reference scaled by cos^2 of the heading error (turn first, then drive)")
       .number("turn_thrust", &P::turn_thrust, 0.0, 1.0, "",
               "least joystick surge while following a path with the bow > 30 deg off (the jets steer with thrust)");
   return t;
@@ -49,6 +51,7 @@ UsvController::UsvController(const UsvControlParams& p) { setParams(p); }
 void UsvController::setParams(const UsvControlParams& p) {
   p.validate();
   const bool refilter = p.filter.tf != p_.filter.tf || p.filter.xi != p_.filter.xi ||
+                        p.filter.notch_width != p_.filter.notch_width ||
                         p.filter.notch_w != p_.filter.notch_w || p.dt != p_.dt || !f_u_.primed();
   p_ = p;
   surge_.setGains(p.surge);
@@ -59,7 +62,7 @@ void UsvController::setParams(const UsvControlParams& p) {
     f_r_ = FeedbackFilter(p.filter, p.dt);
     primed_ = false;
   }
-  if (refilter || !dp_) dp_ = std::make_unique<DynamicPositioning>(p.dp, p.filter, p.dt);
+  if (refilter || !dp_) dp_ = std::make_unique<DynamicPositioning>(p.dp, p.dt);
   else dp_->setParams(p.dp);  // keeps what it has learnt of the current
 }
 
@@ -102,16 +105,20 @@ JoystickOut UsvController::update(const VehicleState& s, const MotionReference& 
   double heading = r.heading;
   if (r.mode == ReferenceMode::kHold) {
     dp_out_ = dp_->update(s, r.point.head<2>(), r.heading);
-    out.surge = dp_out_.surge;
-    out.sway = dp_out_.sway;
+    out.surge = jets_.surgeFor(dp_out_.body_force.x());
+    out.sway = clamp1(dp_out_.body_force.y() / jets_.sideForceFull());
     surge_.reset();
     out.yaw = clamp1(yaw_.update(angleDiff(dp_out_.heading, yaw_f_), -r_f, p_.dt));
     return out;
   }
+  if (p_.turn_first && r.mode == ReferenceMode::kFollow) {
+    // Turn first, then drive: the twin jets turn the boat at rest (the differential buckets), and under way a
+    // large heading change is a wide arc off the path (cross-track 1.7 m turning onto the mission's transit).
+    const double c = std::max(0.0, std::cos(angleDiff(heading, yaw_f_)));
+    u_ref *= c * c;
+  }
   out.surge = clamp1(surge_.update(u_ref - u_f, -du, p_.dt) / p_.max_surge_force);
-  // Turning needs thrust (braking astern gives it too): in the slowdown before the end of a path, in a current
-  // as fast as the boat, it lost its steering. Not in station keeping: there it made the boat wander 12-21 m
-  // in any direction (into the buoy 25 m away in one mission run) instead of drifting downstream.
+  // The lumped jets need thrust to turn (turn_thrust, see the header).
   if (r.mode == ReferenceMode::kFollow && std::abs(angleDiff(heading, yaw_f_)) > deg2rad(30.0) &&
       std::abs(out.surge) < p_.turn_thrust)
     out.surge = p_.turn_thrust;

@@ -19,6 +19,10 @@ const ParamTable<LosParams>& LosParams::table() {
       .flag("adaptive_crab", &P::adaptive_crab, "estimate the crab (sideslip) angle (adaptive LOS)")
       .number("crab_gain", &P::crab_gain, 0.0, 1.0, "1/m^2", "gain of the crab-angle estimate (per m/s of speed)")
       .number("crab_limit", &P::crab_limit, 0.0, kPi / 2, "rad", "largest magnitude of the crab-angle estimate")
+      .flag("measured_crab", &P::measured_crab,
+            "the crab angle from the velocity over ground, atan2(v, u), instead of estimated (GPS velocity)")
+      .number("crab_tf", &P::crab_tf, 0.01, 100.0, "s", "low-pass time constant of the measured crab angle")
+      .number("crab_min_speed", &P::crab_min_speed, 0.0, 10.0, "m/s", "below this speed the crab angle is kept")
       .number("acceptance_radius", &P::acceptance_radius, 0.01, 1000.0, "m",
               "circle (USV, 2 L_USV) or sphere (AUV) of acceptance")
       .flag("sphere", &P::sphere, "3-D sphere of acceptance (AUV) instead of the 2-D circle")
@@ -242,10 +246,16 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
     const double imax = p_.integral_limit / p_.ki;
     integral_ = std::clamp(integral_, -imax, imax);
   }
-  if (p_.adaptive_crab) {
+  const double speed = std::hypot(s.velocity.x(), s.velocity.y());
+  if (p_.measured_crab) {
+    if (speed > p_.crab_min_speed) {
+      const double beta = std::atan2(s.velocity.y(), s.velocity.x());
+      beta_hat_ += angleDiff(beta, beta_hat_) * std::min(1.0, dt / p_.crab_tf);
+    }
+    beta_hat_ = std::clamp(beta_hat_, -p_.crab_limit, p_.crab_limit);
+  } else if (p_.adaptive_crab) {
     // Fossen's ALOS: the update scales with the speed U, as the cross-track rate does; without it the
     // estimate outran the look-ahead at low speed (the mission's transit lies in the slowdown: ringing at ~40 s).
-    const double speed = std::hypot(s.velocity.x(), s.velocity.y());
     beta_hat_ += dt * p_.crab_gain * speed * delta / std::sqrt(delta * delta + e * e) * e;
     beta_hat_ = std::clamp(beta_hat_, -p_.crab_limit, p_.crab_limit);
   }

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 #include "offshore_gnc/common/validate.h"
 
@@ -18,9 +20,13 @@ GuidanceParams GuidanceParams::preset(const std::string& vehicle) {
     p.los.kp = 0.1;
     p.los.ki = 0.001;
     p.los.crab_gain = 0.0027;  // 0.004 at the 1.5 m/s cruise before the update scaled with the speed
+    p.los.measured_crab = true;  // the GPS-compass gives course and heading: the crab angle is measured
+    p.los.crab_tf = 5.0;
     p.los.acceptance_radius = 16.0;
-    p.los.detour_radius = 2.0;
-    p.los.final_radius = 2.0;
+    p.los.detour_radius = 3.0;
+    // The last 10 m are dynamic positioning's: it brakes with the buckets astern and closes in at most at its
+    // max_speed, where the end of the path left the boat at 0.8 m/s and it overshot the point by 3-5 m.
+    p.los.final_radius = 10.0;
     p.los.approach_distance = 60.0;
     p.los.approach_speed = 0.2;
     p.los.surge_speed = 1.5;
@@ -117,7 +123,11 @@ void GuidancePipeline::setState(const VehicleState& s, double t) {
 void GuidancePipeline::replan(const VehicleState& s, double t) {
   if (!p_.sbb_enabled || t - obstacles_time_ > p_.obstacle_timeout) obstacles_.clear();
   SbbPlan plan;
-  if (obstacles_.empty() || base_path_.size() < 2) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < base_path_.size(); ++i) length += (base_path_[i] - base_path_[i - 1]).head<2>().norm();
+  // A path shorter than the corridor is a hold (the mission's lead-in to its station): no detour is planned round
+  // it (the shoreline's boxes turned the hold into a detour and back every scan); the hold point keeps clear.
+  if (obstacles_.empty() || base_path_.size() < 2 || length < p_.sbb.corridor) {
     plan.path = base_path_;
     plan.status = "path clear";
   } else {
@@ -156,9 +166,28 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
   if (stale) out.los.status_text = "odometry stale: holding the last good position";
   else if (!reject_reason_.empty() && out.los.mode == Mode::kHoldFault) out.los.status_text = reject_reason_;
   out.reference = referenceOf(out.los);
+  if (out.reference.mode == ReferenceMode::kHold) keepHoldClear(t, out);
   out.planned_changed = planned_changed_;
   out.boxes_changed = boxes_changed_;
   return true;
+}
+
+void GuidancePipeline::keepHoldClear(double t, GuidanceOutput& out) {
+  if (!p_.sbb_enabled || t - obstacles_time_ > p_.obstacle_timeout) return;
+  const Eigen::Vector2d asked = out.reference.point.head<2>();
+  if (!(refused_hold_ - asked).isZero(0.1)) moved_hold_.reset();  // another hold point: choose afresh
+  const SafeHold h = safeHoldPoint(asked, out.reference.heading, obstacles_, p_.sbb, moved_hold_);
+  if (!h.moved) return;
+  if (!moved_hold_) counters_.increment("hold_point_in_box");
+  refused_hold_ = asked;
+  moved_hold_ = h.point;
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1) << "; hold point N " << asked.x() << " E " << asked.y()
+     << " is too close to obstacle";
+  for (auto id : h.refused_by) os << " " << id;
+  os << ": holding at N " << h.point.x() << " E " << h.point.y() << " instead";
+  out.los.status_text += os.str();
+  out.reference.point.head<2>() = h.point;
 }
 
 }  // namespace guidance

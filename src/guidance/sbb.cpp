@@ -87,7 +87,9 @@ const ParamTable<SbbParams>& SbbParams::table() {
               "navigable half width around the route; a side beyond it is unsafe")
       .number("stop_margin", &P::stop_margin, 0.0, 100.0, "m", "blocked: the path ends this far before the box")
       .number("approach", &P::approach, 0.0, 1000.0, "m",
-              "route waypoints this close to a detour corner are dropped (gentle run-in; 0 = thesis)");
+              "route waypoints this close to a detour corner are dropped (gentle run-in; 0 = thesis)")
+      .number("hold_clearance", &P::hold_clearance, 0.0, 100.0, "m",
+              "a hold point keeps this clear of an obstacle's extent (0: no check)");
   return t;
 }
 
@@ -234,6 +236,56 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
     out.boxes.push_back(makeBox(obs[i], angle, p));
   }
   if (out.status.empty()) out.status = out.modified ? "detour around safety box(es)" : "path clear";
+  return out;
+}
+
+SafeHold safeHoldPoint(const Eigen::Vector2d& point, double heading, const std::vector<SbbObstacle>& obstacles,
+                       const SbbParams& p, const std::optional<Eigen::Vector2d>& previous) {
+  SafeHold out;
+  out.point = point;
+  if (!point.allFinite() || !std::isfinite(heading) || p.hold_clearance <= 0.0) return out;
+  LegFrame f;
+  f.a = point;
+  f.angle = heading;
+  f.u = Eigen::Vector2d(std::cos(heading), std::sin(heading));
+  f.v = Eigen::Vector2d(-std::sin(heading), std::cos(heading));
+  std::vector<Rect> rs;
+  for (const auto& o : obstacles) {
+    if (!o.origin.allFinite() || !std::isfinite(o.length) || !std::isfinite(o.width)) continue;
+    SbbParams at_rest = p;
+    at_rest.safety_x = at_rest.safety_y = p.hold_clearance;
+    rs.push_back(rectOf(o, f, at_rest));
+  }
+  auto inside = [&](const Eigen::Vector2d& q, std::vector<std::uint32_t>* ids) {
+    bool in = false;
+    for (const auto& r : rs)
+      if (q.x() > r.s_lo && q.x() < r.s_hi && q.y() > r.e_lo && q.y() < r.e_hi) {
+        in = true;
+        if (ids) ids->insert(ids->end(), r.ids.begin(), r.ids.end());
+      }
+    return in;
+  };
+  if (!inside(Eigen::Vector2d::Zero(), &out.refused_by)) return out;
+  out.moved = true;
+  if (previous && previous->allFinite() && !inside(f.toLeg(*previous), nullptr)) {
+    out.point = *previous;
+    return out;
+  }
+  // Candidates: straight out through each edge of every box, and every box's corners; the nearest one that no
+  // box contains (overlapping boxes push a point out of one into another).
+  const double eps = 1e-3;
+  std::vector<Eigen::Vector2d> cand;
+  for (const auto& r : rs) {
+    cand.push_back({r.s_lo - eps, 0.0});
+    cand.push_back({r.s_hi + eps, 0.0});
+    cand.push_back({0.0, r.e_lo - eps});
+    cand.push_back({0.0, r.e_hi + eps});
+    for (double cs : {r.s_lo - eps, r.s_hi + eps})
+      for (double ce : {r.e_lo - eps, r.e_hi + eps}) cand.push_back({cs, ce});
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& c : cand)
+    if (!inside(c, nullptr) && c.norm() < best) best = c.norm(), out.point = f.toNed(c.x(), c.y());
   return out;
 }
 

@@ -162,7 +162,9 @@ const ParamTable<UsvMissionParams>& UsvMissionParams::table() {
       .number("peer_timeout", &P::peer_timeout, 1.0, 1e5, "s",
               "AUV side silent this long before a target came: PEER_LOST, keep holding")
       .number("manual_timeout", &P::manual_timeout, 0.05, 60.0, "s",
-              "manual control is released this long after its last command");
+              "manual control is released this long after its last command")
+      .number("station_radius", &P::station_radius, 0.1, 100.0, "m",
+              "arrived, the USV is on station once this close to its station point (the hold counts from there)");
   return t;
 }
 
@@ -190,7 +192,9 @@ std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a) {
                              a.spacing, a.depth);
 }
 
-UsvMission::UsvMission(const UsvMissionParams& p) : p_(p), distance_to_go_(kNaN) { p_.validate(); }
+UsvMission::UsvMission(const UsvMissionParams& p) : p_(p), distance_to_go_(kNaN), on_station_since_(kNaN) {
+  p_.validate();
+}
 
 void UsvMission::onPose(const Eigen::Vector2d& ned, double heading, double t) {
   if (!ned.allFinite() || !std::isfinite(heading)) {
@@ -199,6 +203,9 @@ void UsvMission::onPose(const Eigen::Vector2d& ned, double heading, double t) {
   }
   pose_ = ned;
   heading_ = heading;
+  const auto& held = hold_point_ ? hold_point_ : station_;
+  if (phase_ == UsvPhase::Arrived && held && std::isnan(on_station_since_) && (ned - *held).norm() <= p_.station_radius)
+    on_station_since_ = t;
   if (!station_) {  // station keeping (dynamic positioning) where the mission starts, until a target arrives
     station_ = ned;
     path_due_ = holdPath(ned, heading);
@@ -206,8 +213,9 @@ void UsvMission::onPose(const Eigen::Vector2d& ned, double heading, double t) {
   tick(t);
 }
 
-void UsvMission::onGuidance(guidance::Mode mode, double distance_to_go, double t) {
+void UsvMission::onGuidance(guidance::Mode mode, double distance_to_go, double t, const Eigen::Vector2d& hold_point) {
   distance_to_go_ = distance_to_go;
+  if (mode == guidance::Mode::kStationKeeping && hold_point.allFinite()) hold_point_ = hold_point;
   if (phase_ != UsvPhase::Transit) return;
   if (mode == guidance::Mode::kFollowPath) following_ = true;
   if (following_ && mode == guidance::Mode::kStationKeeping) onPathFinished(t);
@@ -271,6 +279,8 @@ bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
                                               p_.waypoint_spacing))
     path_.push_back(w.head<2>());
   station_ = goal;
+  on_station_since_ = kNaN;
+  hold_point_.reset();
   phase_ = UsvPhase::Transit;
   following_ = false;
   ++path_version_;

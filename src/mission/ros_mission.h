@@ -53,7 +53,8 @@ inline visualization_msgs::MarkerArray targetMarker(double north, double east, d
 
 inline MissionStatus status(const std::string& vehicle, const std::string& phase, const std::string& detail,
                             bool finished, bool success,
-                            double distance_to_go = std::numeric_limits<double>::quiet_NaN()) {
+                            double distance_to_go = std::numeric_limits<double>::quiet_NaN(),
+                            double on_station_since = std::numeric_limits<double>::quiet_NaN()) {
   MissionStatus s;
   s.header.stamp = ros::Time::now();
   s.vehicle = vehicle;
@@ -62,6 +63,7 @@ inline MissionStatus status(const std::string& vehicle, const std::string& phase
   s.finished = finished;
   s.success = success;
   s.distance_to_go = distance_to_go;
+  s.on_station_since = on_station_since;
   return s;
 }
 

@@ -92,7 +92,9 @@ class UsvMissionNodelet : public nodelet::Nodelet {
 
   void onGuidance(const GuidanceStatus::ConstPtr& s) {
     const auto before = mission_->phase();
-    mission_->onGuidance(static_cast<guidance::Mode>(s->mode), s->distance_to_go, s->header.stamp.toSec());
+    const bool holds = s->reference_mode == GuidanceStatus::REFERENCE_HOLD;
+    mission_->onGuidance(static_cast<guidance::Mode>(s->mode), s->distance_to_go, s->header.stamp.toSec(),
+                         holds ? Eigen::Vector2d(s->reference_point.x, s->reference_point.y) : mission::kNoPoint);
     if (mission_->phase() != before) {
       NODELET_INFO("%s", mission_->detail().c_str());
       publishStatus();
@@ -118,7 +120,8 @@ class UsvMissionNodelet : public nodelet::Nodelet {
   void publishStatus() {
     const auto ph = mission_->phase();
     status_pub_.publish(mission_ros::status("usv", mission::toString(ph), mission_->detail(), mission_->finished(),
-                                            ph == mission::UsvPhase::Arrived, mission_->distanceToGo()));
+                                            ph == mission::UsvPhase::Arrived, mission_->distanceToGo(),
+                                            mission_->onStationSince()));
   }
 
   std::unique_ptr<mission::UsvMission> mission_;

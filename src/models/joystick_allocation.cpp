@@ -6,12 +6,24 @@
 namespace offshore_gnc {
 namespace models {
 
+namespace {
+const UsvParams& validated(const UsvParams& p) {
+  p.validate();  // before the lookups and the thrust table are built from it (a bad rpm_max crashed there)
+  return p;
+}
+}  // namespace
+
 JoystickAllocation::JoystickAllocation(const UsvParams& p)
-    : p_(p),
+    : p_(validated(p)),
       joy_rpm_("joy_u", p.joy_u, p.joy_u_rpm),
       joy_nozzle_("joy_r", p.joy_r, p.joy_r_nozzle),
       forces_(p) {
-  p_.validate();
+  rpm_full_ = joy_rpm_(p_.joy_u_full);
+  // At full sway the engines run at rpm_full with the buckets split around neutral (g0 = 0: one ahead, the
+  // other astern, dg = 2 reverse_efficiency), the most side force whose moment they can balance.
+  const double sin_full = 2.0 * p_.reverse_efficiency * p_.jet_y / (2.0 * p_.l_pivot);
+  side_full_ = 2.0 * sin_full *
+               forces_.grossThrust(0.0, rpm_full_, std::asin(sin_full) / p_.nozzle_max_angle * p_.nozzle_max);
 }
 
 bool JoystickAllocation::tryAllocate(const UsvCommand& c, JetCommands& out) const {
@@ -23,14 +35,24 @@ bool JoystickAllocation::tryAllocate(const UsvCommand& c, JetCommands& out) cons
   // fast as the sway and yaw axes need (a nozzle turns the boat in proportion to the jet's thrust), the buckets
   // then trimmed so that the surge force stays what the surge axis asked for.
   const double rpm_s = joy_rpm_(std::abs(c.surge) * p_.joy_u_full);
-  const double rpm = joy_rpm_(std::max({std::abs(c.surge), std::abs(c.sway), p_.yaw_rpm_share * std::abs(c.yaw)}) *
-                              p_.joy_u_full);
+  // Sway asks for a side force in proportion, sway = +-1 being sideForceFull(): thrust grows with rpm^2
+  // (eq. 3.11), so its engine speed is rpm_full sqrt(|sway|). (Through the surge axis' rpm table a small sway
+  // gave almost nothing at idle and DP's lateral corrections came 5-7 times weaker than asked.)
+  const double rpm_y = rpm_full_ * std::sqrt(std::abs(c.sway));
+  const double rpm = std::max(
+      rpm_y, joy_rpm_(std::max(std::abs(c.surge), p_.yaw_rpm_share * std::abs(c.yaw)) * p_.joy_u_full));
   const double b0 = std::clamp(c.surge / p_.bucket_band, -1.0, 1.0);
-  const double g0 = f.bucketGain(b0) * f.grossThrust(0.0, rpm_s, p_r) / f.grossThrust(0.0, rpm, p_r);
+  const double t_rpm = f.grossThrust(0.0, rpm, p_r);
+  const double g0 = f.bucketGain(b0) * f.grossThrust(0.0, rpm_s, p_r) / t_rpm;
   // Differential bucket the buckets can still give around g0 (ahead at most 1, astern at most reverse_efficiency).
   const double dg_max = 2.0 * std::max(0.0, std::min(1.0 - g0, g0 + p_.reverse_efficiency));
-  // Sway: the side force the buckets can balance, sin(a) = q for sway alone (Y = 2 T q).
-  const double q = c.sway * dg_max * p_.jet_y / (2.0 * p_.l_pivot);
+  // Sway: the side force asked for at this rpm, sin(a) = q for sway alone (Y = 2 T(a) q, the nozzle's own
+  // efficiency, eq. 3.12, in T); more than the buckets can balance fails below and the whole command is scaled down.
+  double q = 0.0;
+  for (int i = 0; i < 4 && t_rpm > 0.0; ++i) {
+    const double a_q = std::asin(std::clamp(q, -1.0, 1.0));
+    q = c.sway * side_full_ / (2.0 * f.grossThrust(0.0, rpm, a_q / p_.nozzle_max_angle * p_.nozzle_max));
+  }
   // Under way (|surge| beyond bucket_band): the nozzles steer as the thesis' jets do, turned further for sway with
   // the buckets balancing the sway's moment: sin(a) - sin(a_r) = q cos(a).
   const double a_way = std::atan(q) + std::asin(std::clamp(std::sin(a_r) / std::sqrt(1.0 + q * q), -1.0, 1.0));
@@ -85,6 +107,19 @@ JetCommands JoystickAllocation::allocate(const UsvCommand& in) const {
   last_scale_ = lo;
   tryAllocate({lo * c.surge, lo * c.sway, lo * c.yaw}, out);
   return out;
+}
+
+double JoystickAllocation::surgeFor(double force) const {
+  if (!std::isfinite(force) || force == 0.0) return 0.0;
+  const double sign = force > 0.0 ? 1.0 : -1.0;
+  auto push = [&](double surge) { return sign * staticForce(allocate({sign * surge, 0.0, 0.0})).x(); };
+  if (push(1.0) <= std::abs(force)) return sign;  // beyond full: full
+  double lo = 0.0, hi = 1.0;  // the force grows with |surge| (rpm and bucket both)
+  for (int i = 0; i < 40; ++i) {
+    const double m = 0.5 * (lo + hi);
+    (push(m) < std::abs(force) ? lo : hi) = m;
+  }
+  return sign * 0.5 * (lo + hi);
 }
 
 Eigen::Vector3d JoystickAllocation::staticForce(const JetCommands& c) const {

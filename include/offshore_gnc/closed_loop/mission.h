@@ -6,6 +6,7 @@
 // (metrics over the same samples: guidance's cross-track error in path following).
 #include <Eigen/Core>
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,7 +54,13 @@ struct MissionResult {
   // came, and the 95th percentile distance from its hold point over the hold at the target (NaN without one).
   double usv_wait_drift_m = 0.0, usv_hold_p95_m = 0.0;
   double sim_time_s = 0.0, wall_time_s = 0.0;
+  // The USV at 20 Hz, what a tuner looks at (mission_rosfree --out writes it as usv_trace.csv, kUsvTraceHeader):
+  // truth, guidance's reference and cross-track, the joystick command, dynamic positioning's last step.
+  std::vector<std::array<double, 19>> usv_trace;
 };
+inline constexpr const char* kUsvTraceHeader =
+    "t,north,east,yaw,u,v,r,ref_mode,ref_north,ref_east,ref_heading,xte,surge,sway,yaw_cmd,"
+    "dp_heading,dp_steady_north,dp_steady_east,dp_distance";
 
 MissionResult runMission(const MissionConfig& cfg);
 

@@ -64,9 +64,11 @@ class UsvStack {
   const guidance::GuidancePipeline& guidance() const { return guidance_; }
   // The guidance output of this step, if guidance ran in it.
   const guidance::GuidanceOutput* guidanceStep() const { return guided_ ? &last_ : nullptr; }
+  const guidance::GuidanceOutput& lastGuidance() const { return last_; }  // the latest guidance step's
   const std::vector<guidance::SbbObstacle>& obstacles() const { return obstacles_; }
   const sim::UsvSimulation& simulation() const { return sim_; }
   const control::ActuatorCommand& command() const { return command_; }  // the last control step's
+  const control::ControlLoop& control() const { return control_; }
 
  private:
   void perceive(double t);

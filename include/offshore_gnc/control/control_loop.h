@@ -59,6 +59,7 @@ class ControlLoop {
   const std::string& why() const { return why_; }  // empty while controlling
   const Counters& counters() const { return counters_; }            // stale_input, bad_reference
   const Counters& controllerCounters() const;                        // nan_state, bad_reference
+  const UsvController* usvController() const { return usv_.get(); }  // null on the AUVs
 
  private:
   ControlLoopParams p_;

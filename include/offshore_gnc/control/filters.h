@@ -27,9 +27,14 @@ class Biquad {
   double z1_ = 0, z2_ = 0;
 };
 
+// Each notch is (s^2 + 2 xi zeta w s + w^2) / (s^2 + 2 zeta w s + w^2): depth xi at its centre w whatever its width
+// zeta; zeta = 1 is eq. 4.16's (s + w)^2 denominator. Below its centre a notch delays the signal by about
+// 2 zeta (1 - xi) / w: with eq. 4.16's three notches at xi = 0.8 that is 7 s of the heading's feedback, inside
+// the USV heading loop's own band, where it made the loop ring at ~40 s periods (docs/guidance-control.md).
 struct FilterParams {
   double tf = 0.1;                               // T_f low-pass time constant [s]; 0 disables it
   double xi = 0.8;                               // notch design parameter (depth at the centre = xi)
+  double notch_width = 1.0;                      // zeta (1 = eq. 4.16)
   std::vector<double> notch_w = {0.1, 0.2, 0.4}; // centre frequencies [rad/s]; empty disables the notches
   static const ParamTable<FilterParams>& table();
   void validate() const;

@@ -15,6 +15,7 @@
 #include "offshore_gnc/control/dynamic_positioning.h"
 #include "offshore_gnc/control/filters.h"
 #include "offshore_gnc/control/pid.h"
+#include "offshore_gnc/models/joystick_allocation.h"
 #include "offshore_gnc/models/reference.h"
 #include "offshore_gnc/models/state.h"
 
@@ -31,9 +32,11 @@ struct UsvControlParams {
   double max_surge_force = 4000.0;                       // force at full joystick deflection [N]
   FilterParams filter;                                   // eq. 4.15-4.16
   DpParams dp;                                           // station keeping (dynamic_positioning.h)
-  // The jets steer only with thrust: at zero surge the bucket is neutral and the nozzles turn nothing. While
-  // following a path with the bow more than 30 deg off, the joystick surge is at least this (full range 1).
-  double turn_thrust = 0.3;
+  // Path following: the surge reference scaled by cos^2 of the heading error (turn first, then drive: the twin
+  // jets turn the boat at rest). The thesis' lumped jets steer only with thrust (propulsion: lumped): set
+  // turn_first false and turn_thrust 0.3, the least joystick surge while the bow is more than 30 deg off.
+  bool turn_first = true;
+  double turn_thrust = 0.0;
   double dt = 0.1;                                       // control period [s] (from the control rate)
   static const ParamTable<UsvControlParams>& table();
   void validate() const;
@@ -54,6 +57,9 @@ class UsvController {
   Pid surge_, yaw_;
   FeedbackFilter f_u_, f_yaw_, f_r_;  // surge speed, heading (unwrapped), yaw rate
   std::unique_ptr<DynamicPositioning> dp_;
+  // The jets' allocation (models::UsvParams' thesis values, as the Girona500's controller takes its thrusters
+  // from models::AuvParams): station keeping asks forces, the joystick axes are not linear in them.
+  models::JoystickAllocation jets_{models::UsvParams()};
   DpOutput dp_out_;
   double yaw_unwrapped_ = 0.0, yaw_prev_ = 0.0, yaw_f_ = 0.0, u_f_prev_ = 0.0;
   bool primed_ = false;

@@ -25,6 +25,13 @@ struct LosParams {
   bool adaptive_crab = true;       // estimate the crab (sideslip) angle beta (ALOS)
   double crab_gain = 0.0067;       // gamma of the beta estimate update, per m/s of speed (Fossen's ALOS) [1/m^2]
   double crab_limit = 0.6;         // |beta_hat| bound [rad]
+  // With a velocity over ground (the USV's GPS-compass: Doppler speed and heading) the crab angle is measured,
+  // beta = atan2(v, u), low-passed over crab_tf, instead of estimated: it is known at once on every new leg,
+  // where the estimate of the last leg's crossflow was wrong (cross-track up to 2.5 m after each SBB corner).
+  // Below crab_min_speed it is not measurable and the last value is kept.
+  bool measured_crab = false;
+  double crab_tf = 2.0;            // [s]
+  double crab_min_speed = 0.3;     // [m/s]
   double acceptance_radius = 16.0; // R: circle (USV, 2 L_USV) or sphere (AUV) of acceptance [m]
   bool sphere = false;             // 3-D sphere of acceptance (AUV) instead of the 2-D circle
   double surge_speed = 1.5;        // cruise surge reference [m/s]

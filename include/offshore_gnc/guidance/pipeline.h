@@ -5,6 +5,7 @@
 // this: they feed it plain structs and the time and publish what it returns. ROS-free; NED, seconds.
 #include <Eigen/Core>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,9 @@ class GuidancePipeline {
 
  private:
   void replan(const VehicleState& s, double t);
+  // A hold point too close to an obstacle (sbb/hold_clearance) is refused: the nearest clear point is held instead,
+  // and the status says so (counter hold_point_in_box).
+  void keepHoldClear(double t, GuidanceOutput& out);
 
   GuidanceParams p_;
   LosGuidance los_;
@@ -77,6 +81,8 @@ class GuidancePipeline {
   double state_time_ = 0.0, obstacles_time_ = -1e300;
   bool have_state_ = false, new_path_ = false, replan_ = false, planned_changed_ = false, boxes_changed_ = false;
   std::string reject_reason_;
+  Eigen::Vector2d refused_hold_ = Eigen::Vector2d::Constant(1e300);  // the last hold point refused
+  std::optional<Eigen::Vector2d> moved_hold_;                        // ... and where it was moved
   Counters counters_;
 };
 

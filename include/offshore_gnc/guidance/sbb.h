@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <optional>
 #include <vector>
 
 #include "offshore_gnc/common/param_table.h"
@@ -30,6 +31,7 @@ struct SbbParams {
   double stop_margin = 2.0;   // blocked: the path ends this far before the box [m]
   double approach = 0.0;      // original waypoints closer than this to a detour corner are dropped, so a vehicle
                               // with a large turning circle gets a gentle run-in and run-out (0 = thesis) [m]
+  double hold_clearance = 3.0; // a hold point keeps this clear of an obstacle's extent (0: no check) [m]
   static const ParamTable<SbbParams>& table();
   void validate() const;
 };
@@ -67,6 +69,20 @@ SbbBox makeBox(const SbbObstacle& o, double path_angle, const SbbParams& p);
 SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d& vehicle,
                 const std::vector<SbbObstacle>& obstacles, const SbbParams& p,
                 const std::vector<SbbBox>& previous = {});
+
+// A hold point (station keeping) that keeps clear of every obstacle: a square about the obstacle, half side its
+// larger extent / 2 + hold_clearance (the safety distances along and across a path are for passing at speed),
+// aligned with `heading` (the hold's). A point inside one is moved to the nearest point outside all of them
+// (`refused_by` names the obstacles), or, given `previous` (where the last such move put it), kept there while
+// that is still clear: LiDAR clusters come and go from scan to scan, and a hold point moved afresh each time
+// wandered (the shoreline scenario's hold jumped by metres every second).
+struct SafeHold {
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  bool moved = false;
+  std::vector<std::uint32_t> refused_by;
+};
+SafeHold safeHoldPoint(const Eigen::Vector2d& point, double heading, const std::vector<SbbObstacle>& obstacles,
+                       const SbbParams& p, const std::optional<Eigen::Vector2d>& previous = std::nullopt);
 
 }  // namespace guidance
 }  // namespace offshore_gnc

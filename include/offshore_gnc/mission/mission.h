@@ -4,6 +4,7 @@
 // for (paths, the target, status). All positions in map_ned (x north, y east, z down) [m], times in seconds.
 #include <Eigen/Core>
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -94,9 +95,12 @@ struct UsvMissionParams {
   double min_distance = 1.0;        // a target closer than this (after the stand-off) needs no transit [m]
   double peer_timeout = 60.0;       // AUV side silent this long before a target arrived -> report, keep DP [s]
   double manual_timeout = 1.0;      // manual control is released this long after its last command [s]
+  double station_radius = 1.0;      // arrived, the USV is on station once this close to its hold point [m]
   static const ParamTable<UsvMissionParams>& table();
   void validate() const;
 };
+
+inline const Eigen::Vector2d kNoPoint = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
 
 enum class UsvPhase { StationKeeping, Transit, Arrived, Manual, PeerLost };
 const char* toString(UsvPhase p);
@@ -119,14 +123,20 @@ class UsvMission {
   void setRegion(std::optional<safety::Region> region) { region_ = std::move(region); }
   const std::string& refusal() const { return refusal_; }  // why the last refused target was refused
   void onPathFinished(double t);           // guidance reports the end of the path reached
-  // Guidance's mode and distance to go: the end of the transit is station keeping after path following.
-  void onGuidance(guidance::Mode mode, double distance_to_go, double t);
+  // Guidance's mode and distance to go: the end of the transit is station keeping after path following. The point
+  // guidance holds (NaN: none) is what being on station is measured against: guidance moves it off an obstacle's
+  // safety box when the stand-off point lies inside one.
+  void onGuidance(guidance::Mode mode, double distance_to_go, double t,
+                  const Eigen::Vector2d& hold_point = kNoPoint);
   void onManual(bool active, double t);
   void onManualCommand(double t);          // a manual command seen: manual until manual_timeout after the last
   void onPeerAlive(double t);              // any sign of life from the AUV side (link status, relayed topic)
   void tick(double t);                     // time-based checks (peer timeout, manual released)
   std::optional<std::vector<Eigen::Vector2d>> takePath();
   double distanceToGo() const;             // along the transit path; NaN outside the transit
+  // Arrived, when the USV first came within station_radius of the point guidance holds (NaN before): the hold at the
+  // target counts from here (the main job's hold_time, the report's usv_hold_p95_m).
+  double onStationSince() const { return on_station_since_; }
 
   UsvPhase phase() const { return manual_ ? UsvPhase::Manual : phase_; }
   bool finished() const { return phase_ == UsvPhase::Arrived; }
@@ -143,13 +153,13 @@ class UsvMission {
   UsvMissionParams p_;
   UsvPhase phase_ = UsvPhase::StationKeeping;
   bool manual_ = false, following_ = false;
-  std::optional<Eigen::Vector2d> pose_, target_, station_, refused_;
+  std::optional<Eigen::Vector2d> pose_, target_, station_, refused_, hold_point_;
   std::optional<safety::Region> region_;
   std::string refusal_;
   std::optional<std::vector<Eigen::Vector2d>> path_due_;
   std::vector<Eigen::Vector2d> path_;
   int path_version_ = 0;
-  double last_peer_ = 0.0, heading_ = 0.0, last_manual_ = -1e300, distance_to_go_;
+  double last_peer_ = 0.0, heading_ = 0.0, last_manual_ = -1e300, distance_to_go_, on_station_since_;
   bool peer_seen_ = false;
   Counters counters_;
 };

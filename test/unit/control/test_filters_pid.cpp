@@ -40,6 +40,28 @@ TEST(Filters, EachNotchHasDepthXiAtItsCentre) {
   }
 }
 
+TEST(Filters, NotchWidthKeepsTheDepthAndShortensTheLowFrequencyLag) {
+  // The lag below a notch, 2 zeta (1 - xi) / w: eq. 4.16's three (zeta = 1, xi = 0.8) delay a slow heading by 7 s,
+  // the USV heading loop's undoing (docs/guidance-control.md); a narrow notch keeps the depth and lags less.
+  const double dt = 0.1, w_slow = 0.005;
+  for (double zeta : {1.0, 0.2}) {
+    FilterParams p;
+    p.tf = 0.0;
+    p.notch_width = zeta;
+    FeedbackFilter f(p, dt);
+    double expected = 0.0;
+    for (std::size_t i = 0; i < p.notch_w.size(); ++i) {
+      EXPECT_NEAR(std::abs(f.sections()[i].response(p.notch_w[i], dt)), p.xi, 1e-9) << zeta;
+      expected += 2.0 * zeta * (1.0 - p.xi) / p.notch_w[i];
+    }
+    const double delay = -std::arg(f.response(w_slow)) / w_slow;  // phase delay at a slow frequency
+    EXPECT_NEAR(delay, expected, 0.05 * expected) << zeta;
+    EXPECT_TRUE(f.stable());
+  }
+  FilterParams thesis;
+  EXPECT_NEAR(2.0 * (1.0 - thesis.xi) * (1 / 0.1 + 1 / 0.2 + 1 / 0.4), 7.0, 1e-9);
+}
+
 TEST(Filters, LowPassCornerAndHighFrequencyRejection) {
   FilterParams p;
   p.notch_w.clear();

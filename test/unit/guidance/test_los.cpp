@@ -91,6 +91,25 @@ TEST(Los, AdaptiveCrabGrowsWithStandingError) {
   EXPECT_NEAR(o.crab_angle, p.crab_limit, 1e-12);
 }
 
+TEST(Los, MeasuredCrabAngleIsTheSideslipOverGroundOnEveryLeg) {
+  // The GPS-compass gives course and heading: beta = atan2(v, u), low-passed, known on a new leg at once.
+  LosParams p = plain();
+  p.measured_crab = true;
+  p.crab_tf = 1.0;
+  LosGuidance g(p);
+  g.setPath({V3(0, 0, 0), V3(1000, 0, 0)});
+  VehicleState s = at(10, 0.0);
+  s.velocity = V3(1.0, 0.2, 0.0);  // slipping to starboard
+  LosOutput o;
+  for (int i = 0; i < 100; ++i) o = g.update(s, 0.1);
+  EXPECT_NEAR(o.crab_angle, std::atan2(0.2, 1.0), 1e-3);
+  EXPECT_NEAR(o.desired_heading, -std::atan2(0.2, 1.0), 1e-3);  // on the line: the bow up-current by beta
+  // below crab_min_speed the sideslip means nothing: the last value is kept
+  s.velocity = V3(0.05, 0.1, 0.0);
+  for (int i = 0; i < 100; ++i) o = g.update(s, 0.1);
+  EXPECT_NEAR(o.crab_angle, std::atan2(0.2, 1.0), 1e-3);
+}
+
 TEST(Los, CircleOfAcceptanceSwitches) {
   LosParams p = plain();
   p.acceptance_radius = 5.0;

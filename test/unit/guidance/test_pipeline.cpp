@@ -155,6 +155,37 @@ TEST(GuidancePipeline, BadInputIsRefusedWithAReason) {
   EXPECT_THROW(GuidanceParams::preset("submarine"), ConfigError);
 }
 
+TEST(GuidancePipeline, AHoldPointTooCloseToAnObstacleIsRefusedAndAClearOneHeld) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  g.setState(at(-10, 0), 0.0);
+  g.setPath({{-12, 0, 0}, {-10, 0, 0}});  // a hold (the mission's lead-in to its station at N -10)
+  GuidanceOutput out;
+  ASSERT_TRUE(g.update(0.0, 0.1, out));
+  ASSERT_EQ(out.reference.mode, ReferenceMode::kHold);
+  EXPECT_NEAR((out.reference.point.head<2>() - Eigen::Vector2d(-10, 0)).norm(), 0.0, 1e-9);
+  // a buoy turns up 1 m from the station: keep-out 0.6 m + hold_clearance 3 m about it
+  g.setObstacles({buoy(-9, 0)}, 0.1);
+  ASSERT_TRUE(g.update(0.2, 0.1, out));
+  const Eigen::Vector2d held = out.reference.point.head<2>();
+  EXPECT_GE((held - Eigen::Vector2d(-9, 0)).cwiseAbs().maxCoeff(), 3.6 - 1e-6);
+  EXPECT_NEAR(held.x(), -12.6, 0.01);  // the nearest clear point: straight back out of the square
+  EXPECT_NE(out.los.status_text.find("too close to obstacle 7"), std::string::npos) << out.los.status_text;
+  EXPECT_EQ(g.counters().get("hold_point_in_box"), 1u);
+  // the obstacle flickers in the next scans: the moved point stays where it was (no wandering), counted once
+  for (int i = 0; i < 5; ++i) {
+    g.setObstacles({buoy(-9 + 0.1 * i, 0.05 * i)}, 0.3 + 0.1 * i);
+    ASSERT_TRUE(g.update(0.3 + 0.1 * i, 0.1, out));
+    EXPECT_NEAR((out.reference.point.head<2>() - held).norm(), 0.0, 1e-9);
+  }
+  EXPECT_EQ(g.counters().get("hold_point_in_box"), 1u);
+  // the hold (a path shorter than the corridor) is not turned into a detour round the box
+  EXPECT_EQ(g.plannedPath().size(), 2u);
+  // gone: the station itself again
+  g.setObstacles({}, 1.0);
+  ASSERT_TRUE(g.update(1.0, 0.1, out));
+  EXPECT_NEAR((out.reference.point.head<2>() - Eigen::Vector2d(-10, 0)).norm(), 0.0, 1e-9);
+}
+
 TEST(GuidancePipeline, PresetsAreTheThesisTables) {
   EXPECT_DOUBLE_EQ(GuidanceParams::preset("usv").los.acceptance_radius, 16.0);  // 2 L_USV
   EXPECT_DOUBLE_EQ(GuidanceParams::preset("girona500").los.kp, 0.0333);         // Table 4.3

@@ -87,6 +87,34 @@ TEST(UsvMission, TransitToStandoffThenArrive) {
   EXPECT_TRUE(m.finished());
 }
 
+TEST(UsvMission, OnStationOnceWithinItsRadiusOfThePointGuidanceHolds) {
+  UsvMission m;  // station_radius 1 m
+  m.onPose({0, 0}, 0.0, 0.0);
+  ASSERT_TRUE(m.onTarget({0, 48}, 5.0));
+  m.onPathFinished(60.0);
+  ASSERT_EQ(m.phase(), UsvPhase::Arrived);
+  EXPECT_TRUE(std::isnan(m.onStationSince()));
+  m.onPose({0, 43.5}, 1.5, 61.0);  // 1.5 m short of the station at E 45
+  EXPECT_TRUE(std::isnan(m.onStationSince()));
+  m.onPose({0, 44.3}, 1.5, 70.0);
+  EXPECT_DOUBLE_EQ(m.onStationSince(), 70.0);
+  m.onPose({0, 40.0}, 1.5, 80.0);  // later wandering does not move when the hold began
+  EXPECT_DOUBLE_EQ(m.onStationSince(), 70.0);
+  // guidance holding another point (the station was too close to an obstacle): measured against that one
+  UsvMission n;
+  n.onPose({0, 0}, 0.0, 0.0);
+  ASSERT_TRUE(n.onTarget({0, 48}, 5.0));
+  n.onGuidance(guidance::Mode::kStationKeeping, 0.0, 60.0, Eigen::Vector2d(4, 45));
+  n.onPathFinished(60.0);
+  n.onPose({0, 45}, 1.5, 61.0);
+  EXPECT_TRUE(std::isnan(n.onStationSince()));
+  n.onPose({3.5, 45}, 1.5, 65.0);
+  EXPECT_DOUBLE_EQ(n.onStationSince(), 65.0);
+  // a new target: the hold is measured afresh
+  ASSERT_TRUE(n.onTarget({30, 48}, 70.0));
+  EXPECT_TRUE(std::isnan(n.onStationSince()));
+}
+
 TEST(UsvMission, ManualAlwaysWins) {
   UsvMission m;
   m.onPose({0, 0}, 0.0, 0.0);

@@ -167,7 +167,8 @@ TEST(Identification, RecoversCoefficientsFromANoiseFreeModelLog) {
   EXPECT_NE(out.find("# fitted: standard error"), std::string::npos);
   const UsvParams back = usvParamsFromYaml(out, "fitted");
   EXPECT_NEAR(back.X_uu, value("X_uu"), 1e-3 * back.X_uu);
-  EXPECT_EQ(back.Y_vv, -3000.0);  // not estimated: as in the start file
+  // The twin jets' nozzles push the stern sideways (the lumped jets did not), so sway is excited and Y_vv found.
+  EXPECT_NEAR(std::abs(back.Y_vv), 3000.0, 0.02 * 3000.0);
 }
 
 TEST(Identification, ConstantCommandsEstimateNothingAndSayWhy) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/models/environment.h"
 #include "offshore_gnc/models/joystick_allocation.h"
 #include "offshore_gnc/models/params_yaml.h"
@@ -36,6 +37,30 @@ TEST(JoystickAllocation, EachAxisPushesItsOwnWay) {
   EXPECT_LT(std::abs(turn.x()), 0.2 * std::abs(turn.z()));
   const Eigen::Vector3d other = a.staticForce(a.allocate({0.0, 0.0, -0.5}));
   EXPECT_LT(turn.z() * other.z(), 0.0);
+}
+
+TEST(JoystickAllocation, SwayIsLinearInSideForceAndSurgeForInvertsTheSurgeAxis) {
+  // Dynamic positioning asks forces: sway is a share of sideForceFull() (engines at the least rpm that gives it),
+  // and surgeFor() finds the joystick surge of a force through Table 2's rpm and the buckets.
+  const JoystickAllocation a(params());
+  EXPECT_GT(a.sideForceFull(), 300.0);
+  for (double sway : {0.05, 0.2, 0.5, 0.9}) {
+    const Eigen::Vector3d f = a.staticForce(a.allocate({0.0, sway, 0.0}));
+    EXPECT_NEAR(f.y(), sway * a.sideForceFull(), 0.05 * sway * a.sideForceFull()) << sway;
+    EXPECT_LT(std::abs(f.z()), 0.05 * std::abs(f.y()) * params().l_pivot) << sway;  // its moment balanced
+  }
+  for (double force : {-600.0, -40.0, 15.0, 150.0, 900.0, 3000.0}) {
+    const double surge = a.surgeFor(force);
+    EXPECT_NEAR(a.staticForce(a.allocate({surge, 0.0, 0.0})).x(), force, 0.01 * std::abs(force) + 0.5) << force;
+  }
+  EXPECT_DOUBLE_EQ(a.surgeFor(1e6), 1.0);  // beyond the jets: full
+  EXPECT_DOUBLE_EQ(a.surgeFor(std::numeric_limits<double>::quiet_NaN()), 0.0);
+}
+
+TEST(JoystickAllocation, BadParametersAreRefusedBeforeAnythingIsBuiltFromThem) {
+  UsvParams p = params();
+  p.rpm_max = -1.0;
+  EXPECT_THROW(JoystickAllocation a(p), ConfigError);
 }
 
 TEST(JoystickAllocation, SaturationKeepsTheDirection) {
