@@ -221,43 +221,81 @@ class SharedClock:
 
 class Screenshots:
     """rviz with the USV configuration under Xvfb, shot every few wall seconds once the USV is under way; keeps
-    the shot where the planned path, the target from the AUV and the safety boxes are all drawn (the last such)."""
+    the shot where the planned path, the target from the AUV and the safety boxes are all drawn (the last such).
+    A shot only starts the `import` process and never waits for it: the job's loop drives the shared lockstep
+    clock, and shots taken and scored in the loop (seconds each on a loaded machine) stalled the simulation until
+    the default mission ran out of its time. The shots are scored when the run ends."""
     # config/rviz/usv.rviz path colour, the mission's target marker, the guidance's box outlines (red when the
     # box cuts the path, olive when it does not)
     COLOURS = {"planned_path": [(25, 255, 0)], "target": [(255, 0, 255)], "safety_box": [(255, 0, 0), (128, 128, 0)]}
     MIN_PIXELS = 30
-    COMPLETE = 1e9  # score bonus of a shot with every colour drawn: any complete shot beats every partial one
+    INTERVAL_S = 2.0  # wall seconds between the end of one shot and the start of the next
+    KEEP = 30         # newest shots kept for scoring
 
     def __init__(self, master, out):
         from offshore_gnc.testing.screenshot import RvizScreen
-        self.out, self.best, self.best_score, self.last_t = out, None, -1.0, 0.0
+        self.out, self.last_t, self.proc, self.shots, self.taken = out, 0.0, None, [], 0
+        self.dir = os.path.join(out, "rviz_shots")
+        os.makedirs(self.dir, exist_ok=True)
         master.wait_for_param("/use_sim_time", 60.0)  # rviz reads it once: without it, it shows wall time
         self.screen = RvizScreen(master, os.path.join(REPO, "config", "rviz", "usv.rviz")).__enter__()
 
-    def maybe_shoot(self, usv_phase, force=False):
-        if usv_phase not in ("TRANSIT", "ARRIVED") or (time.time() - self.last_t < 2.0 and not force):
-            return
-        from offshore_gnc.testing.screenshot import count_colour
-        self.last_t = time.time()
-        tmp = os.path.join(self.out, "rviz_usv.tmp.png")
+    def _reap(self, wait=False):
+        """The running shot, if it has ended: kept when its PNG was written."""
+        if self.proc is None:
+            return True
         try:
-            self.screen.shot(tmp)
-        except (RuntimeError, subprocess.SubprocessError) as e:
-            print("[mission] screenshot failed: %s" % e, flush=True)
+            rc = self.proc.wait(timeout=30) if wait else self.proc.poll()
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            rc = self.proc.wait()
+        if rc is None:
+            return False
+        if rc == 0 and os.path.exists(self.pending):
+            self.shots.append(self.pending)
+            for old in self.shots[:-self.KEEP]:
+                os.remove(old)
+            self.shots = self.shots[-self.KEEP:]
+        else:
+            print("[mission] screenshot failed (import exit %s)" % rc, flush=True)
+        self.proc, self.last_t = None, time.time()
+        return True
+
+    def maybe_shoot(self, usv_phase, force=False):
+        if usv_phase not in ("TRANSIT", "ARRIVED") or not self._reap():
             return
-        px = {k: sum(count_colour(tmp, rgb) for rgb in rgbs) for k, rgbs in self.COLOURS.items()}
-        # all colours present beats any partial picture; among complete ones the latest (most path followed)
-        score = min(px.values()) >= self.MIN_PIXELS and self.COMPLETE + self.last_t or sum(min(v, 500) for v in px.values())
-        if score >= self.best_score:
-            self.best, self.best_score = px, score
-            os.replace(tmp, os.path.join(self.out, "rviz_usv.png"))
+        if time.time() - self.last_t < self.INTERVAL_S and not force:
+            return
+        self.taken += 1
+        self.pending = os.path.join(self.dir, "shot_%04d.png" % self.taken)
+        try:
+            self.proc = self.screen.shot_async(self.pending)
+        except (RuntimeError, OSError) as e:
+            print("[mission] screenshot failed: %s" % e, flush=True)
+            self.last_t = time.time()
 
     def close(self, usv_phase=None):
-        # a run quicker than the shot interval (an idle machine) still gets its picture: one at the end
-        if self.best_score < self.COMPLETE:
+        """Scores the shots from the newest back and keeps the newest with every colour drawn (else the one with
+        the most of them) as rviz_usv.png; a run quicker than the shot interval gets one shot here, at its end."""
+        from offshore_gnc.testing.screenshot import count_colour
+        self._reap(wait=True)
+        if not self.shots:
             self.maybe_shoot(usv_phase, force=True)
+            self._reap(wait=True)
+        best, best_score = None, -1
+        for path in reversed(self.shots):
+            px = {k: sum(count_colour(path, rgb) for rgb in rgbs) for k, rgbs in self.COLOURS.items()}
+            score = sum(min(v, 500) for v in px.values())
+            if min(px.values()) >= self.MIN_PIXELS:
+                best = (path, px)
+                break
+            if score > best_score:
+                best, best_score = (path, px), score
         self.screen.__exit__(None, None, None)
-        return self.best
+        if best:
+            os.replace(best[0], os.path.join(self.out, "rviz_usv.png"))
+        shutil.rmtree(self.dir, ignore_errors=True)
+        return best[1] if best else None
 
 
 def fmt_progress(u, a):

@@ -3,8 +3,9 @@ simulation on one shared (lockstep) simulated clock, the relay between them; the
 stated bounds, rviz's picture of the USV during the run, and what happens when one vehicle's stack dies."""
 import json
 import os
-import subprocess
 import sys
+
+from offshore_gnc.testing import run_job
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 JOB = os.path.join(REPO, "python", "offshore_gnc", "mission_job.py")
@@ -21,9 +22,8 @@ MAX_AUV_RMSE_M = 0.4     # the AUV's true cross-track from the first waypoint (t
 
 
 def run(scenario, out, *extra):
-    r = subprocess.run([sys.executable, JOB, "--scenario", os.path.join(REPO, "config", "scenarios", scenario),
-                        "--out", str(out), "--rate", "20", "--quiet"] + list(extra), stdout=subprocess.PIPE,
-                       stderr=subprocess.STDOUT, text=True, timeout=600)
+    r = run_job([sys.executable, JOB, "--scenario", os.path.join(REPO, "config", "scenarios", scenario),
+                 "--out", str(out), "--rate", "20", "--quiet"] + list(extra), 600)
     metrics = json.load(open(os.path.join(str(out), "metrics.json")))
     return r, metrics
 
@@ -64,8 +64,7 @@ def test_a_scenario_on_another_origin_is_refused_naming_both(tmp_path):
     assert moved != text
     sc = tmp_path / "palma.yaml"
     sc.write_text(moved)
-    r = subprocess.run([sys.executable, JOB, "--scenario", str(sc), "--out", str(tmp_path / "palma"), "--quiet"],
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+    r = run_job([sys.executable, JOB, "--scenario", str(sc), "--out", str(tmp_path / "palma"), "--quiet"], 120)
     assert r.returncode == 2, r.stdout[-3000:]
     assert "refused" in r.stdout and "39.550000" in r.stdout and "61.450700" in r.stdout and "km apart" in r.stdout
     assert not (tmp_path / "palma" / "logs").exists()  # nothing was started

@@ -4,10 +4,11 @@ documented rule and action within its deadline, the release after the fault, the
 for the USBL outage of issue 16 the navigation saying so and recovering."""
 import json
 import os
-import subprocess
 import sys
 
 import pytest
+
+from offshore_gnc.testing import run_job
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 JOB = os.path.join(REPO, "python", "offshore_gnc", "mission_job.py")
@@ -25,8 +26,7 @@ START_S, DURATION_S = 80.0, 20.0
 
 
 def run(out, *extra):
-    r = subprocess.run([sys.executable, JOB, "--out", str(out), "--rate", "20", "--quiet"] + list(extra),
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
+    r = run_job([sys.executable, JOB, "--out", str(out), "--rate", "20", "--quiet"] + list(extra), 600)
     assert os.path.exists(os.path.join(str(out), "metrics.json")), r.stdout[-3000:]
     return r, json.load(open(os.path.join(str(out), "metrics.json")))
 
@@ -79,8 +79,7 @@ def test_a_60_s_usbl_outage_in_the_coverage_is_survived_and_recovered(tmp_path):
 
 
 def test_a_fault_plan_that_makes_no_sense_is_refused_before_start(tmp_path):
-    r = subprocess.run([sys.executable, JOB, "--out", str(tmp_path / "bad"), "--quiet", "--fault", "gpss@10+5"],
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+    r = run_job([sys.executable, JOB, "--out", str(tmp_path / "bad"), "--quiet", "--fault", "gpss@10+5"], 120)
     assert r.returncode == 2, r.stdout[-2000:]
     assert "refused" in r.stdout and "unknown fault 'gpss'" in r.stdout and "NAME@START_S" in r.stdout, r.stdout
     assert not (tmp_path / "bad" / "logs").exists()  # nothing was started

@@ -6,6 +6,8 @@ import sys
 
 import pytest
 
+from offshore_gnc.testing import run_job
+
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SCENARIOS = sorted(glob.glob(os.path.join(REPO, "config", "scenarios", "*.yaml")))
 
@@ -43,9 +45,8 @@ def test_bad_scenarios_are_refused(tmp_path, text, needle):
 def test_main_job_refuses_a_bad_scenario_before_starting(tmp_path):
     p = tmp_path / "bad.yaml"
     p.write_text("name: x\nunknown_key: 1\n")
-    r = subprocess.run([sys.executable, os.path.join(REPO, "python", "offshore_gnc", "mission_job.py"),
-                        "--scenario", str(p), "--out", str(tmp_path / "out")], stdout=subprocess.PIPE,
-                       stderr=subprocess.STDOUT, text=True, timeout=60)
+    r = run_job([sys.executable, os.path.join(REPO, "python", "offshore_gnc", "mission_job.py"),
+                 "--scenario", str(p), "--out", str(tmp_path / "out")], 60)
     assert r.returncode == 2
     assert "refused" in r.stdout and "unknown_key" in r.stdout
     assert not (tmp_path / "out" / "logs").exists()  # nothing was started

@@ -1,2 +1,2 @@
 """Test helpers for offshore_gnc: several real ROS masters in one test (see masters.py)."""
-from .masters import Master, MasterSet, free_port  # noqa: F401
+from .masters import Master, MasterSet, free_port, run_job  # noqa: F401

@@ -59,6 +59,21 @@ def kill_tree(pid, sig=signal.SIGKILL):
             pass
 
 
+def run_job(argv, timeout):
+    """Runs a command (the mission job) to its end in a session of its own and returns its CompletedProcess
+    (stdout and stderr as one text). On timeout its whole process tree (masters, launches, rviz) is killed before
+    TimeoutExpired is raised: subprocess.run's timeout killed only the job, and its orphans went on burning both
+    cores through the rest of the suite."""
+    p = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True)
+    try:
+        out, _ = p.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        kill_tree(p.pid)
+        out, _ = p.communicate()
+        raise subprocess.TimeoutExpired(argv, timeout, output=out)
+    return subprocess.CompletedProcess(argv, p.returncode, out)
+
+
 def _kill(proc, grace=5.0):
     """SIGINT the process group (ROS nodes shut down cleanly), then SIGTERM, then SIGKILL; finally SIGKILL
     whatever of its process tree is left."""

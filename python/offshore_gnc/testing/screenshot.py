@@ -31,10 +31,15 @@ class RvizScreen:
 
     def shot(self, path):
         """Screenshot of the whole virtual screen as PNG."""
+        self.shot_async(path).wait(timeout=30)
+        return path
+
+    def shot_async(self, path):
+        """Starts a screenshot into `path`; returns its process (exit status 0 when the PNG is written)."""
         if self.rviz.poll() is not None:
             raise RuntimeError("rviz exited with %s (log: %s)" % (self.rviz.returncode, self.master.log_path("rviz")))
-        subprocess.run(["import", "-display", self.display, "-window", "root", path], check=True, timeout=30)
-        return path
+        return subprocess.Popen(["import", "-display", self.display, "-window", "root", path],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
     def __exit__(self, *exc):
         from .masters import _kill
