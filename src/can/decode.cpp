@@ -70,6 +70,13 @@ std::optional<std::string> decodeToJson(const CandumpLine& line, const jet::Addr
     return Json(line.stamp, line.iface, id, "waterjet_status")
         .num("jet", st.jet).num("rpm", st.rpm).num("nozzle", st.nozzle).num("bucket", st.bucket)
         .num("faults", st.faults).num("counter", st.counter).done();
+  if (e != jet::Error::kNotOurs) return fail(jet::toString(e));
+  jet::Setpoint sp;
+  e = jet::decodeSetpoint(f, sp, addresses);
+  if (e == jet::Error::kNone)
+    return Json(line.stamp, line.iface, id, "waterjet_setpoint")
+        .num("jet", sp.jet).num("rpm", sp.rpm).num("nozzle", sp.nozzle).num("bucket", sp.bucket)
+        .num("source", sp.source).num("counter", sp.counter).done();
   return fail(jet::toString(e));
 }
 

@@ -97,7 +97,7 @@ else
 fi
 # can_decode over what candump recorded during the run: every kind of frame must decode.
 missing=""
-for kind in waterjet_command waterjet_manual waterjet_status position_rapid vessel_heading cog_sog_rapid; do
+for kind in waterjet_setpoint waterjet_command waterjet_manual waterjet_status position_rapid vessel_heading cog_sog_rapid; do
   grep -q "\"name\":\"$kind\"" "$run/decoded.jsonl" 2>/dev/null || missing="$missing $kind"
 done
 n=$(wc -l < "$run/decoded.jsonl" 2>/dev/null || echo 0)
