@@ -26,28 +26,23 @@ void WaterjetEmulator::command(int jet, const jet::Setpoint& s, double now) {
 }
 
 void WaterjetEmulator::onFrame(const CanFrame& f, double now) {
-  jet::Command c;
-  bool manual = false;
-  jet::Error e = jet::decodeCommand(f, c, &manual);
-  jet::Setpoint sp;
-  bool per_jet = false;
-  if (e == jet::Error::kNotOurs) {
-    e = jet::decodeSetpoint(f, sp, a_);
-    per_jet = true;
+  const jet::Decoded d = jet::decode(f, a_);
+  using K = jet::Decoded::Kind;
+  if (d.kind == K::kNone) {
+    if (d.error != jet::Error::kNotOurs) counters_.increment(jet::toString(d.error));
+    return;  // GPS frames: not for the units
   }
-  if (e == jet::Error::kNotOurs) return;  // GPS, status frames: not for the units
-  if (e != jet::Error::kNone) {
-    counters_.increment(jet::toString(e));
-    return;
-  }
-  if (!check_.accept(f.id, per_jet ? sp.counter : c.counter)) counters_.increment("counter_jumps");  // a gap: still act
+  if (d.kind == K::kStatus) return;  // the other unit's
+  const bool per_jet = d.kind == K::kSetpoint, manual = d.kind == K::kManual;
+  if (!check_.accept(f.id, per_jet ? d.setpoint.counter : d.command.counter))
+    counters_.increment("counter_jumps");  // a gap: still act on it
   if (!manual && now - manual_at_ <= command_timeout_) return;  // manual controls own the jets
   if (manual) manual_at_ = now;
   if (per_jet) {
-    command(sp.jet, sp, now);
+    command(d.setpoint.jet, d.setpoint, now);
     return;
   }
-  const auto both = allocation_.allocate(c.surge, c.sway, c.yaw, c.source);
+  const auto both = allocation_.allocate(d.command.surge, d.command.sway, d.command.yaw, d.command.source);
   for (int i = 0; i < 2; ++i) command(i, both[i], now);
 }
 

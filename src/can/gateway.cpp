@@ -222,45 +222,33 @@ void CanGateway::handle(const CanFrame& f, double t, const GatewayOutputs& out) 
       return;
     }
   }
-  jet::Command cmd;
-  bool manual = false;
-  jet::Error e = jet::decodeCommand(f, cmd, &manual);
-  if (e == jet::Error::kNone) {
-    if (!manual) {  // another gateway on the bus, or our own echo: not ours to obey
+  const jet::Decoded d = jet::decode(f, policy_.config().addresses);
+  // The counter must follow the sender's previous one; a unit repeating one frame (counter stuck) never passes,
+  // so it does not count as answering.
+  auto inSequence = [&](std::uint8_t counter) {
+    const bool ok = counters_check_.accept(f.id, counter);
+    if (!ok) counters_.increment("counter_jumps");
+    return ok;
+  };
+  using K = jet::Decoded::Kind;
+  switch (d.kind) {
+    case K::kCommand:
+    case K::kSetpoint:  // another gateway on the bus, or ours seen from another socket: not ours to obey
       counters_.increment("foreign_commands");
       return;
-    }
-    if (!counters_check_.accept(f.id, cmd.counter)) {
-      counters_.increment("counter_jumps");
+    case K::kManual:
+      if (!inSequence(d.command.counter)) return;
+      policy_.onManual(d.command, t);
+      if (out.manual) out.manual(d.command);
       return;
-    }
-    policy_.onManual(cmd, t);
-    if (out.manual) out.manual(cmd);
-    return;
-  }
-  if (e == jet::Error::kNotOurs) {
-    jet::Status st;
-    e = jet::decodeStatus(f, st, policy_.config().addresses);
-    if (e == jet::Error::kNone) {
-      // A unit repeating one frame (counter stuck) never passes: it does not count as answering.
-      if (!counters_check_.accept(f.id, st.counter)) {
-        counters_.increment("counter_jumps");
-        return;
-      }
-      policy_.onStatus(st, t);
-      if (out.status) out.status(st);
+    case K::kStatus:
+      if (!inSequence(d.status.counter)) return;
+      policy_.onStatus(d.status, t);
+      if (out.status) out.status(d.status);
       return;
-    }
+    case K::kNone: break;
   }
-  if (e == jet::Error::kNotOurs) {
-    jet::Setpoint sp;
-    e = jet::decodeSetpoint(f, sp, policy_.config().addresses);
-    if (e == jet::Error::kNone) {  // another gateway, or ours seen from another socket: not ours to obey
-      counters_.increment("foreign_commands");
-      return;
-    }
-  }
-  counters_.increment(jet::toString(e));
+  counters_.increment(jet::toString(d.error));
 }
 
 }  // namespace can

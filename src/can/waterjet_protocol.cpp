@@ -169,6 +169,16 @@ Error decodeSetpoint(const CanFrame& f, Setpoint& out, const Addresses& a) {
   return Error::kNone;
 }
 
+Decoded decode(const CanFrame& f, const Addresses& a) {
+  Decoded d;
+  bool manual = false;
+  using K = Decoded::Kind;
+  if ((d.error = decodeCommand(f, d.command, &manual)) == Error::kNone) d.kind = manual ? K::kManual : K::kCommand;
+  else if (d.error == Error::kNotOurs && (d.error = decodeStatus(f, d.status, a)) == Error::kNone) d.kind = K::kStatus;
+  else if (d.error == Error::kNotOurs && (d.error = decodeSetpoint(f, d.setpoint, a)) == Error::kNone) d.kind = K::kSetpoint;
+  return d;
+}
+
 const ParamTable<Addresses>& Addresses::table() {
   static const ParamTable<Addresses> t = ParamTable<Addresses>()
       .integer("gateway", &Addresses::gateway, 0, 253, "source address of the gateway's commands")

@@ -75,6 +75,17 @@ Error decodeStatus(const CanFrame& f, Status& out, const Addresses& a = {});
 // kNotOurs also for Proprietary A frames addressed to another device than the two jets.
 Error decodeSetpoint(const CanFrame& f, Setpoint& out, const Addresses& a = {});
 
+// Any frame of ours, whichever kind: `kind` says which member holds it; kNone with `error` when the frame is
+// not ours (kNotOurs) or broken (the first error of the decoder its id belongs to).
+struct Decoded {
+  enum class Kind { kNone, kCommand, kManual, kStatus, kSetpoint } kind = Kind::kNone;
+  Error error = Error::kNotOurs;
+  Command command;    // kCommand (the gateway's 3-axis frame), kManual (the bridge's)
+  Status status;      // kStatus
+  Setpoint setpoint;  // kSetpoint
+};
+Decoded decode(const CanFrame& f, const Addresses& a = {});
+
 // Rolling-counter check per sender: the first frame and each successor (mod 16) pass; a jump fails once and
 // resynchronises, so a single lost frame costs one frame, not the stream.
 class CounterCheck {
