@@ -59,7 +59,6 @@ class UsvSimNodelet : public nodelet::Nodelet {
       cfg.usv.type = p.choice("model", "dynamic", {"dynamic", "nomoto"}) == "nomoto" ? models::UsvModelType::Nomoto
                                                                                      : models::UsvModelType::Dynamic3Dof;
       manual_timeout_ = p.number("manual_timeout", 1.0, 0.05, 60);
-      // /usv/waterjet/applied_cmd when the CAN gateway + emulator chain is in the loop (docs/architecture.md)
       command_topic_ = p.text("command_topic", "/usv/joystick_cmd");
       // /usv/waterjet/applied_setpoints behind the CAN gateway + emulator: the units already chose manual or autonomy
       jet_command_topic_ = p.text("jet_command_topic", "");

@@ -8,6 +8,7 @@
 
 #include "offshore_gnc/can/emulator.h"
 #include "offshore_gnc/can/gateway.h"
+#include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/models/params_yaml.h"
 
@@ -167,6 +168,32 @@ TEST(GatewayPolicy, RejectsBadAutonomyAndConfig) {
   models::UsvParams broken = jets();
   broken.rpm_max = broken.rpm_min - 1.0;
   EXPECT_THROW(GatewayPolicy(GatewayConfig{}, broken, counters), ConfigError);
+}
+
+TEST(GatewayConfig, TheShippedFileThroughTheTables) {
+  // config/can/usv.yaml is what can_usv.launch loads into both nodelets; each reads its own table's keys.
+  const YAML::Node file = YAML::LoadFile("config/can/usv.yaml");
+  GatewayConfig g;
+  g.command_rate = g.jet_timeout = 1.0;  // so that the file's values show
+  readParamsYaml(file, GatewayConfig::table(), g, "config/can/usv.yaml");
+  EXPECT_NO_THROW(g.validate());
+  EXPECT_DOUBLE_EQ(g.command_rate, 20.0);
+  EXPECT_DOUBLE_EQ(g.jet_timeout, 0.5);
+  EXPECT_EQ(g.command_frames, "jets");
+  EXPECT_EQ(g.addresses.jet_base, 0x30);
+  EmulatorConfig e;
+  e.addresses.gateway = 0;
+  readParamsYaml(file, EmulatorConfig::table(), e, "config/can/usv.yaml");
+  EXPECT_EQ(e.addresses.gateway, 0x20);
+  // A bad value names the file and the key.
+  YAML::Node bad = YAML::Clone(file);
+  bad["command_frames"] = "both";
+  try {
+    readParamsYaml(bad, GatewayConfig::table(), g, "x.yaml");
+    FAIL() << "accepted command_frames: both";
+  } catch (const ConfigError& err) {
+    EXPECT_NE(std::string(err.what()).find("command_frames"), std::string::npos) << err.what();
+  }
 }
 
 TEST(JetAllocation, WireAndModelUnits) {
