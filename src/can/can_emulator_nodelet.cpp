@@ -1,12 +1,13 @@
 // CanEmulator: the USV's bus devices in simulation, on a real (v)can interface: the two waterjet control
-// units (answer the gateway's commands with status frames) and the GPS-compass (NMEA 2000 from the
-// simulator's ground truth). With it, simulated commands travel the same CAN path as on the boat.
+// units (act on the gateway's per-jet set-points, answer with status frames) and the GPS-compass (NMEA 2000
+// from the simulator's ground truth). With it, simulated commands travel the same CAN path as on the boat.
 //   in:  /usv/ground_truth/odom (nav_msgs/Odometry, map ENU / usv/base_link)
-//   out: waterjet/applied_cmd (JoystickCommand the units act on; a simulator can take it instead of joystick_cmd)
+//   out: waterjet/applied_setpoints (WaterjetSetpoints the units act on; the USV simulator takes them with
+//        ~jet_command_topic, driving its per-jet model)
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
-#include <offshore_gnc/JoystickCommand.h>
+#include <offshore_gnc/WaterjetSetpoints.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
 #include <tf2/utils.h>
@@ -20,6 +21,7 @@
 #include "offshore_gnc/can/gateway.h"
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 
@@ -30,35 +32,25 @@ class CanEmulatorNodelet : public nodelet::Nodelet {
     ros::NodeHandle& nh = getNodeHandle();
     ros_util::ParamReader p(getPrivateNodeHandle());
     can::SocketCanOptions bus;
-    can::WaterjetModel model;
-    can::jet::Addresses addr;
-    geo::LatLonAlt origin;
-    double rate = 10.0;
+    can::EmulatorConfig cfg;
+    models::UsvParams jets;
     try {
       bus.iface = p.text("interface", "vcan0");
       bus.auto_restart = false;  // a simulated device never restarts the controller
-      rate = p.number("rate", 10.0, 1.0, 100.0);
-      model.idle_rpm = p.number("waterjet/idle_rpm", model.idle_rpm, 0.0, 3000.0);
-      model.max_rpm = p.number("waterjet/max_rpm", model.max_rpm, model.idle_rpm, can::jet::kMaxRpm);
-      model.rpm_time_constant = p.number("waterjet/rpm_time_constant", model.rpm_time_constant, 0.01, 10.0);
-      model.command_timeout = p.number("waterjet/command_timeout", model.command_timeout, 0.05, 10.0);
-      addr.gateway = static_cast<std::uint8_t>(p.integer("address/gateway", 0x20, 0, 253));
-      addr.bridge = static_cast<std::uint8_t>(p.integer("address/bridge", 0x10, 0, 253));
-      addr.jet_base = static_cast<std::uint8_t>(p.integer("address/jet_base", 0x30, 0, 252));
-      gps_address_ = static_cast<std::uint8_t>(p.integer("address/gps", 0x40, 0, 253));
-      origin.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
-      origin.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
+      ros_util::readParams(p, can::EmulatorConfig::table(), cfg);
+      const std::string model = p.text("model_params", "");  // the jets' model (config/models/), as the simulator's
+      if (!model.empty()) jets = models::loadUsvParams(model);
+      jets_ = std::make_unique<can::WaterjetEmulator>(jets, cfg.command_timeout, cfg.addresses, counters_);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
     }
-    local_ = std::make_unique<geo::LocalNed>(origin);
+    local_ = std::make_unique<geo::LocalNed>(cfg.origin);
     bus_ = std::make_unique<can::SocketCan>(bus, counters_);
     if (!bus_->open()) NODELET_WARN("%s (retrying)", bus_->lastError().c_str());
-    jets_ = std::make_unique<can::WaterjetEmulator>(model, addr, counters_);
-    gps_ = std::make_unique<can::GpsCompassEmulator>(gps_address_);
+    gps_ = std::make_unique<can::GpsCompassEmulator>(static_cast<std::uint8_t>(cfg.gps_address));
 
-    applied_pub_ = nh.advertise<offshore_gnc::JoystickCommand>("waterjet/applied_cmd", 10);
+    applied_pub_ = nh.advertise<offshore_gnc::WaterjetSetpoints>("waterjet/applied_setpoints", 10);
     odom_sub_ = nh.subscribe("ground_truth/odom", 10, &CanEmulatorNodelet::onOdom, this);
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("can-emulator:" + bus.iface);
@@ -71,11 +63,11 @@ class CanEmulatorNodelet : public nodelet::Nodelet {
       ros_util::addCounters(s, counters_, {"bad_checksum", "out_of_range", "counter_jumps", "odom_invalid"});
     });
     // The bus runs on wall time like the hardware it stands for; devices answer at `rate`.
-    period_ = 1.0 / rate;
+    period_ = 1.0 / cfg.rate;
     timer_ = nh.createWallTimer(ros::WallDuration(0.01), [this](const ros::WallTimerEvent&) { spin(); });
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
     NODELET_INFO("CAN emulator on %s: waterjets 0x%02X/0x%02X, GPS-compass 0x%02X at %.1f Hz", bus.iface.c_str(),
-                 addr.jet_base, addr.jet_base + 1, gps_address_, rate);
+                 cfg.addresses.jet_base, cfg.addresses.jet_base + 1, cfg.gps_address, cfg.rate);
   }
 
   void onOdom(const nav_msgs::Odometry::ConstPtr& m) {
@@ -114,16 +106,15 @@ class CanEmulatorNodelet : public nodelet::Nodelet {
     if (sample_)
       for (const auto& f : gps_->frames(*sample_)) bus_->send(f);
     bus_->flush();
-    const can::jet::Command& c = jets_->applied();
-    offshore_gnc::JoystickCommand m;
+    offshore_gnc::WaterjetSetpoints m;
     m.header.stamp = ros::Time::now();
-    const bool fault = jets_->jets()[0].faults != 0;
-    m.surge = fault ? 0.0 : c.surge;
-    m.sway = fault ? 0.0 : c.sway;
-    m.yaw = fault ? 0.0 : c.yaw;
-    m.source = c.source;
-    m.priority = c.source >= can::kJoystick ? offshore_gnc::JoystickCommand::PRIORITY_MANUAL
-                                            : offshore_gnc::JoystickCommand::PRIORITY_AUTONOMY;
+    for (int i = 0; i < 2; ++i) {
+      const models::JetCommand& c = jets_->applied()[i];
+      m.rpm[i] = c.rpm;
+      m.nozzle[i] = c.nozzle;
+      m.bucket[i] = c.bucket;
+      m.source[i] = jets_->appliedSource(i);
+    }
     applied_pub_.publish(m);
   }
 
@@ -134,7 +125,6 @@ class CanEmulatorNodelet : public nodelet::Nodelet {
   std::unique_ptr<can::WaterjetEmulator> jets_;
   std::unique_ptr<can::GpsCompassEmulator> gps_;
   std::optional<can::GpsCompassSample> sample_;
-  std::uint8_t gps_address_ = 0x40;
   double period_ = 0.1, next_ = 0.0;
   ros::Publisher applied_pub_;
   ros::Subscriber odom_sub_;

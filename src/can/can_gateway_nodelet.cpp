@@ -1,13 +1,15 @@
 // CanGateway: the USV's CAN <-> ROS bridge (thesis 4.3.1, the CCPilot display computer's role). Thin wrapper
 // over can::CanGateway: parameters, message conversion, diagnostics; the bus is spun in its own thread.
-//   in:  joystick_cmd (offshore_gnc/JoystickCommand, autonomy)        -> waterjet commands on the bus
+//   in:  joystick_cmd (offshore_gnc/JoystickCommand, autonomy)        -> per-jet set-point frames on the bus
 //   out: /usv_gps (NavSatFix), /usv_heading (QuaternionStamped, ENU), gps/velocity (TwistStamped, ENU),
-//        waterjet/status (WaterjetStatus), manual_cmd (JoystickCommand seen from the bridge)
+//        waterjet/status (WaterjetStatus), waterjet/answering (WaterjetAnswering, latched: for the safety
+//        supervisor's jet rule), manual_cmd (JoystickCommand seen from the bridge)
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/QuaternionStamped.h>
 #include <geometry_msgs/TwistStamped.h>
 #include <nodelet/nodelet.h>
 #include <offshore_gnc/JoystickCommand.h>
+#include <offshore_gnc/WaterjetAnswering.h>
 #include <offshore_gnc/WaterjetStatus.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
@@ -21,6 +23,7 @@
 #include "offshore_gnc/can/gateway.h"
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 
@@ -39,31 +42,30 @@ class CanGatewayNodelet : public nodelet::Nodelet {
     ros_util::ParamReader p(getPrivateNodeHandle());
     can::SocketCanOptions bus;
     can::GatewayConfig cfg;
+    models::UsvParams jets;
     try {
       bus.iface = p.text("interface", "can0");
       bus.fd = p.flag("fd", false);
       bus.auto_restart = p.flag("auto_restart", true);
       bus.restart_delay = p.number("restart_delay", 0.1, 0.0, 10.0);
-      cfg.period = 1.0 / p.number("command_rate", 20.0, 1.0, 200.0);
-      cfg.watchdog_timeout = p.number("watchdog_timeout", 0.5, 0.01, 10.0);
-      cfg.manual_hold = p.number("manual_hold", 0.3, 0.01, 10.0);
-      cfg.addresses.gateway = static_cast<std::uint8_t>(p.integer("address/gateway", 0x20, 0, 253));
-      cfg.addresses.bridge = static_cast<std::uint8_t>(p.integer("address/bridge", 0x10, 0, 253));
-      cfg.addresses.jet_base = static_cast<std::uint8_t>(p.integer("address/jet_base", 0x30, 0, 252));
+      ros_util::readParams(p, can::GatewayConfig::table(), cfg);
+      cfg.validate();
+      const std::string model = p.text("model_params", "");  // the jets the allocation drives (config/models/)
+      if (!model.empty()) jets = models::loadUsvParams(model);
       gps_frame_ = p.text("gps_frame", "usv/gps");
       world_frame_ = p.text("world_frame", "map");
-      cfg.validate();
+      gateway_ = std::make_unique<can::CanGateway>(bus, cfg, jets, counters_);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
     }
-    gateway_ = std::make_unique<can::CanGateway>(bus, cfg, counters_);
 
     gps_pub_ = nh.advertise<sensor_msgs::NavSatFix>("/usv_gps", 10);
     heading_pub_ = nh.advertise<geometry_msgs::QuaternionStamped>("/usv_heading", 10);
     velocity_pub_ = nh.advertise<geometry_msgs::TwistStamped>("gps/velocity", 10);
     status_pub_ = nh.advertise<offshore_gnc::WaterjetStatus>("waterjet/status", 10);
     manual_pub_ = nh.advertise<offshore_gnc::JoystickCommand>("manual_cmd", 10);
+    answering_pub_ = nh.advertise<offshore_gnc::WaterjetAnswering>("waterjet/answering", 1, true);
     cmd_sub_ = nh.subscribe("joystick_cmd", 10, &CanGatewayNodelet::onCommand, this);
 
     outputs_.position = [this](const can::n2k::PositionRapid& v, std::uint8_t) {
@@ -128,13 +130,32 @@ class CanGatewayNodelet : public nodelet::Nodelet {
       manual_pub_.publish(m);
     };
 
+    outputs_.answering = [this](const std::array<bool, 2>& a) {
+      offshore_gnc::WaterjetAnswering m;
+      m.header.stamp = ros::Time::now();
+      m.answering = {a[0], a[1]};
+      answering_pub_.publish(m);
+      for (int i = 0; i < 2; ++i)
+        if (!a[i]) NODELET_ERROR("waterjet %s not answering on %s: both jets get the neutral command", can::jetName(i), iface_.c_str());
+    };
+
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("can:" + bus.iface);
     updater_->add("can gateway", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
       const can::BusState st = gateway_->state();
       const can::Mode mode = gateway_->mode();
+      std::string silent;
+      for (int i = 0; i < 2; ++i) {
+        const double quiet = gateway_->jetSilentFor(i);
+        const bool answering = gateway_->jetAnswering(i);
+        s.add(std::string(can::jetName(i)) + "_jet", answering ? "answering" : "not answering");
+        s.addf(std::string(can::jetName(i)) + "_jet_silent_s", "%.2f", quiet);
+        if (!answering) silent += std::string(silent.empty() ? "" : ", ") + can::jetName(i);
+      }
       if (st == can::BusState::kDown || st == can::BusState::kBusOff)
         s.summary(diagnostic_msgs::DiagnosticStatus::ERROR, std::string("bus ") + can::toString(st));
+      else if (!silent.empty())
+        s.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "waterjet " + silent + " not answering, " + can::toString(mode));
       else if (st != can::BusState::kErrorActive || mode == can::Mode::kWatchdog)
         s.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                   std::string("bus ") + can::toString(st) + ", " + can::toString(mode));
@@ -144,14 +165,16 @@ class CanGatewayNodelet : public nodelet::Nodelet {
       s.add("mode", can::toString(mode));
       ros_util::addCounters(s, counters_,
                             {"wrong_dlc", "unknown_id", "bad_checksum", "out_of_range", "counter_jumps",
-                             "autonomy_out_of_range", "tx_dropped"});
+                             "autonomy_out_of_range", "port_jet_timeouts", "starboard_jet_timeouts", "tx_dropped"});
     });
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
     spinner_ = std::thread([this] {
       while (!stop_ && ros::ok()) gateway_->spinOnce(0.02, outputs_);
     });
-    NODELET_INFO("CAN gateway on %s: commands at %.1f Hz, watchdog %.2f s, manual hold %.2f s", bus.iface.c_str(),
-                 1.0 / cfg.period, cfg.watchdog_timeout, cfg.manual_hold);
+    iface_ = bus.iface;
+    NODELET_INFO("CAN gateway on %s: %s command frames at %.1f Hz, watchdog %.2f s, manual hold %.2f s, jet timeout %.2f s",
+                 bus.iface.c_str(), cfg.command_frames.c_str(), cfg.command_rate, cfg.watchdog_timeout, cfg.manual_hold,
+                 cfg.jet_timeout);
   }
 
   void onCommand(const offshore_gnc::JoystickCommand::ConstPtr& m) {
@@ -163,8 +186,8 @@ class CanGatewayNodelet : public nodelet::Nodelet {
   Counters counters_;
   std::unique_ptr<can::CanGateway> gateway_;
   can::GatewayOutputs outputs_;
-  std::string gps_frame_, world_frame_;
-  ros::Publisher gps_pub_, heading_pub_, velocity_pub_, status_pub_, manual_pub_;
+  std::string gps_frame_, world_frame_, iface_;
+  ros::Publisher gps_pub_, heading_pub_, velocity_pub_, status_pub_, manual_pub_, answering_pub_;
   ros::Subscriber cmd_sub_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::WallTimer diag_timer_;

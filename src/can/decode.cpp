@@ -27,6 +27,10 @@ class Json {
     else os_ << "null";
     return *this;
   }
+  // The fields a status and a per-jet set-point share.
+  Json& jet(std::uint8_t jet, double rpm, double nozzle, double bucket) {
+    return num("jet", jet).num("rpm", rpm).num("nozzle", nozzle).num("bucket", bucket);
+  }
   std::string done() { return os_.str() + "}"; }
 
  private:
@@ -56,21 +60,27 @@ std::optional<std::string> decodeToJson(const CandumpLine& line, const jet::Addr
   if (auto c = n2k::decodeCogSogRapid(f))
     return Json(line.stamp, line.iface, id, "cog_sog_rapid")
         .num("sid", c->sid).num("reference", c->reference).num("cog_rad", c->cog_rad).num("sog_mps", c->sog_mps).done();
-  jet::Command cmd;
-  bool manual = false;
-  jet::Error e = jet::decodeCommand(f, cmd, &manual);
-  if (e == jet::Error::kNone)
-    return Json(line.stamp, line.iface, id, manual ? "waterjet_manual" : "waterjet_command")
-        .num("surge", cmd.surge).num("sway", cmd.sway).num("yaw", cmd.yaw).num("source", cmd.source)
-        .num("counter", cmd.counter).done();
-  if (e != jet::Error::kNotOurs) return fail(jet::toString(e));
-  jet::Status st;
-  e = jet::decodeStatus(f, st, addresses);
-  if (e == jet::Error::kNone)
-    return Json(line.stamp, line.iface, id, "waterjet_status")
-        .num("jet", st.jet).num("rpm", st.rpm).num("nozzle", st.nozzle).num("bucket", st.bucket)
-        .num("faults", st.faults).num("counter", st.counter).done();
-  return fail(jet::toString(e));
+  const jet::Decoded d = jet::decode(f, addresses);
+  using K = jet::Decoded::Kind;
+  switch (d.kind) {
+    case K::kCommand:
+    case K::kManual:
+      return Json(line.stamp, line.iface, id, d.kind == K::kManual ? "waterjet_manual" : "waterjet_command")
+          .num("surge", d.command.surge).num("sway", d.command.sway).num("yaw", d.command.yaw)
+          .num("source", d.command.source).num("counter", d.command.counter).done();
+    case K::kStatus: {
+      const jet::Status& st = d.status;
+      return Json(line.stamp, line.iface, id, "waterjet_status")
+          .jet(st.jet, st.rpm, st.nozzle, st.bucket).num("faults", st.faults).num("counter", st.counter).done();
+    }
+    case K::kSetpoint: {
+      const jet::Setpoint& sp = d.setpoint;
+      return Json(line.stamp, line.iface, id, "waterjet_setpoint")
+          .jet(sp.jet, sp.rpm, sp.nozzle, sp.bucket).num("source", sp.source).num("counter", sp.counter).done();
+    }
+    case K::kNone: break;
+  }
+  return fail(jet::toString(d.error));
 }
 
 }  // namespace can

@@ -8,52 +8,83 @@
 namespace offshore_gnc {
 namespace can {
 
-WaterjetEmulator::WaterjetEmulator(WaterjetModel model, jet::Addresses addresses, Counters& counters)
-    : m_(model), a_(addresses), counters_(counters) {
-  for (std::uint8_t i = 0; i < 2; ++i) {
-    jets_[i].jet = i;
-    jets_[i].rpm = m_.idle_rpm;
-  }
+WaterjetEmulator::WaterjetEmulator(const models::UsvParams& jets, double command_timeout, jet::Addresses addresses,
+                                   Counters& counters)
+    : command_timeout_(command_timeout),
+      a_(addresses),
+      counters_(counters),
+      allocation_(jets),
+      model_(jets),
+      commanded_(JetAllocation::neutral(kWatchdog)),
+      applied_(model_.commands()) {
+  for (std::uint8_t i = 0; i < 2; ++i) status_[i].jet = i;
+}
+
+void WaterjetEmulator::command(int jet, const jet::Setpoint& s, double now) {
+  commanded_[jet] = s;
+  command_at_[jet] = now;
 }
 
 void WaterjetEmulator::onFrame(const CanFrame& f, double now) {
-  jet::Command c;
-  bool manual = false;
-  const jet::Error e = jet::decodeCommand(f, c, &manual);
-  if (e == jet::Error::kNotOurs) return;  // GPS, status frames: not for the units
-  if (e != jet::Error::kNone) {
-    counters_.increment(jet::toString(e));
+  const jet::Decoded d = jet::decode(f, a_);
+  using K = jet::Decoded::Kind;
+  if (d.kind == K::kNone) {
+    if (d.error != jet::Error::kNotOurs) counters_.increment(jet::toString(d.error));
+    return;  // GPS frames: not for the units
+  }
+  if (d.kind == K::kStatus) return;  // the other unit's
+  const bool per_jet = d.kind == K::kSetpoint, manual = d.kind == K::kManual;
+  if (!check_.accept(f.id, per_jet ? d.setpoint.counter : d.command.counter))
+    counters_.increment("counter_jumps");  // a gap: still act on it
+  if (!manual && now - manual_at_ <= command_timeout_) return;  // manual controls own the jets
+  if (manual) manual_at_ = now;
+  if (per_jet) {
+    command(d.setpoint.jet, d.setpoint, now);
     return;
   }
-  if (!check_.accept(f.id, c.counter)) counters_.increment("counter_jumps");  // a gap: still act on it
-  if (!manual && now - manual_at_ <= m_.command_timeout) return;  // manual controls own the jets
-  if (manual) manual_at_ = now;
-  applied_ = c;
-  command_at_ = now;
+  const auto both = allocation_.allocate(d.command.surge, d.command.sway, d.command.yaw, d.command.source);
+  for (int i = 0; i < 2; ++i) command(i, both[i], now);
 }
 
 std::vector<CanFrame> WaterjetEmulator::step(double now) {
   const double dt = last_step_ < 0.0 ? 0.0 : std::clamp(now - last_step_, 0.0, 1.0);
+  std::array<bool, 2> stale;
+  for (int i = 0; i < 2; ++i) {
+    stale[i] = now - command_at_[i] > command_timeout_;
+    const jet::Setpoint s = stale[i] ? JetAllocation::neutral(kWatchdog)[i] : commanded_[i];
+    applied_[i] = allocation_.toModel(s);
+    source_[i] = s.source;
+  }
+  model_.setCommands(applied_);
+  if (dt > 0.0) model_.step(last_step_, dt);
   last_step_ = now;
-  const bool stale = now - command_at_ > m_.command_timeout;
-  jet::Command c = applied_;
-  if (stale) c = jet::Command{};
   std::vector<CanFrame> out;
-  for (auto& j : jets_) {
-    // Both jets share surge; yaw and sway both steer the nozzles (a twin-jet hull has no separate sway).
-    const double nozzle_ref = std::clamp(c.yaw + c.sway, -1.0, 1.0);
-    const double rpm_ref = m_.idle_rpm + std::abs(c.surge) * (m_.max_rpm - m_.idle_rpm);
-    j.rpm += (rpm_ref - j.rpm) * (1.0 - std::exp(-dt / m_.rpm_time_constant));
-    const double max_move = m_.nozzle_rate * dt;
-    j.nozzle += std::clamp(nozzle_ref - j.nozzle, -max_move, max_move);
-    j.bucket += std::clamp((c.surge >= 0.0 ? 1.0 : -1.0) * (std::abs(c.surge) > 0.02 ? 1.0 : 0.0) - j.bucket,
-                           -max_move, max_move);
-    j.faults = stale ? 8 /* WaterjetStatus::FAULT_COMMS */ : 0;
-    j.counter = counter_;
-    out.push_back(jet::encodeStatus(j, a_));
+  for (int i = 0; i < 2; ++i) {
+    const models::JetState& m = model_.state()[i];
+    const jet::Setpoint w = allocation_.toWire({m.rpm, m.nozzle, m.bucket}, static_cast<std::uint8_t>(i), 0);
+    jet::Status& s = status_[i];
+    s.rpm = w.rpm;
+    s.nozzle = w.nozzle;
+    s.bucket = w.bucket;
+    s.faults = stale[i] ? 8 /* WaterjetStatus::FAULT_COMMS */ : 0;
+    s.counter = counter_;
+    if (!silent_[i]) out.push_back(jet::encodeStatus(s, a_));
   }
   counter_ = static_cast<std::uint8_t>((counter_ + 1) & 0x0F);
   return out;
+}
+
+const ParamTable<EmulatorConfig>& EmulatorConfig::table() {
+  using C = EmulatorConfig;
+  static const ParamTable<C> t =
+      ParamTable<C>()
+          .number("rate", &C::rate, 1.0, 100.0, "Hz", "status and GPS-compass frames per second")
+          .number("waterjet/command_timeout", &C::command_timeout, 0.05, 10.0, "s",
+                  "a unit without commands for this long goes neutral and raises FAULT_COMMS")
+          .integer("address/gps", &C::gps_address, 0, 253, "source address of the GPS-compass")
+          .nest("address/", &C::addresses, jet::Addresses::table())
+          .nest("origin/", &C::origin, geo::LatLonAlt::table());
+  return t;
 }
 
 std::vector<CanFrame> GpsCompassEmulator::frames(const GpsCompassSample& s) {

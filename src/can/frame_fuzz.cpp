@@ -1,6 +1,7 @@
 // libFuzzer target: arbitrary frames (4 bytes id + flags, 1 byte length, payload) through the NMEA 2000 and
-// waterjet decoders, the bus-state monitor, the gateway policy and the waterjet emulator. Outputs must stay
-// finite and in range. Built by `scripts/fuzz frame`.
+// waterjet decoders (3-axis commands, per-jet set-points, status), the bus-state monitor, the gateway policy
+// (both command framings) and the waterjet emulator on the USV model's jets. Outputs must stay finite and in
+// range. Built by `scripts/fuzz frame`.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -22,8 +23,16 @@ bool finiteIn(const std::optional<double>& v, double lo, double hi) { return !v 
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static Counters counters;
-  static WaterjetEmulator emu(WaterjetModel{}, {}, counters);
-  static GatewayPolicy policy(GatewayConfig{}, counters);
+  static const models::UsvParams jets;
+  static WaterjetEmulator emu(jets, 0.5, {}, counters);
+  static GatewayPolicy policy(GatewayConfig{}, jets, counters);
+  static GatewayPolicy joystick_policy(
+      [] {
+        GatewayConfig c;
+        c.command_frames = "joystick";
+        return c;
+      }(),
+      jets, counters);
   static BusMonitor monitor(counters);
   static double t = 0.0;
   if (size < 5) return 0;
@@ -46,14 +55,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   bool manual = false;
   if (jet::decodeCommand(f, cmd, &manual) == jet::Error::kNone) {
     check(std::abs(cmd.surge) <= 1 && std::abs(cmd.sway) <= 1 && std::abs(cmd.yaw) <= 1 && cmd.source <= 4);
-    if (manual) policy.onManual(cmd, t);
-    else policy.onAutonomy(cmd.surge, cmd.sway, cmd.yaw, t);
+    for (GatewayPolicy* p : {&policy, &joystick_policy}) {
+      if (manual) p->onManual(cmd, t);
+      else check(p->onAutonomy(cmd.surge, cmd.sway, cmd.yaw, t));
+    }
   }
   jet::Status st;
-  if (jet::decodeStatus(f, st) == jet::Error::kNone) check(st.rpm >= 0 && st.rpm <= jet::kMaxRpm && std::abs(st.nozzle) <= 1);
+  if (jet::decodeStatus(f, st) == jet::Error::kNone) {
+    check(st.rpm >= 0 && st.rpm <= jet::kMaxRpm && std::abs(st.nozzle) <= 1 && std::abs(st.bucket) <= 1);
+    policy.onStatus(st, t);
+  }
+  jet::Setpoint sp;
+  if (jet::decodeSetpoint(f, sp) == jet::Error::kNone)
+    check(sp.jet <= 1 && sp.rpm >= 0 && sp.rpm <= jet::kMaxRpm && std::abs(sp.nozzle) <= 1 && std::abs(sp.bucket) <= 1 &&
+          sp.source <= 4);
   if (f.error) monitor.onErrorFrame(f);
   emu.onFrame(f, t);
   for (const auto& out : emu.step(t)) check(jet::decodeStatus(out, st) == jet::Error::kNone && std::isfinite(st.rpm));
-  if (auto out = policy.tick(t)) check(jet::decodeCommand(*out, cmd) == jet::Error::kNone);
+  for (const auto& c : emu.applied())
+    check(std::isfinite(c.rpm) && std::abs(c.nozzle) <= jets.nozzle_max && std::abs(c.bucket) <= 1);
+  for (const auto& out : policy.tick(t)) check(jet::decodeSetpoint(out, sp) == jet::Error::kNone);
+  for (const auto& out : joystick_policy.tick(t)) check(jet::decodeCommand(out, cmd) == jet::Error::kNone);
   return 0;
 }

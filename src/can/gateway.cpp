@@ -1,5 +1,6 @@
 #include "offshore_gnc/can/gateway.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -8,10 +9,27 @@
 namespace offshore_gnc {
 namespace can {
 
+const ParamTable<GatewayConfig>& GatewayConfig::table() {
+  using C = GatewayConfig;
+  static const ParamTable<C> t =
+      ParamTable<C>()
+          .number("command_rate", &C::command_rate, 1.0, 200.0, "Hz", "command frames per second")
+          .number("watchdog_timeout", &C::watchdog_timeout, 0.01, 10.0, "s",
+                  "no autonomy command for this long: the neutral command (source watchdog)")
+          .number("manual_hold", &C::manual_hold, 0.01, 10.0, "s", "a manual frame from the bridge silences autonomy this long")
+          .number("jet_timeout", &C::jet_timeout, 0.01, 10.0, "s",
+                  "no valid status frame from a jet for this long: it is not answering (both jets neutral)")
+          .choice("command_frames", &C::command_frames, {"jets", "joystick"},
+                  "jets: per-jet set-points allocated here; joystick: the 3-axis frame, for units that allocate it")
+          .nest("address/", &C::addresses, jet::Addresses::table());
+  return t;
+}
+
 void GatewayConfig::validate() const {
-  requireRange("period", period, 0.005, 1.0);
-  requireRange("watchdog_timeout", watchdog_timeout, period, 10.0);
-  requireRange("manual_hold", manual_hold, period, 10.0);
+  table().validate(*this);
+  requireRange("watchdog_timeout", watchdog_timeout, period(), 10.0);
+  requireRange("manual_hold", manual_hold, period(), 10.0);
+  requireRange("jet_timeout", jet_timeout, period(), 10.0);
   if (addresses.jet_base == addresses.gateway || addresses.jet_base + 1 == addresses.gateway ||
       addresses.bridge == addresses.gateway)
     throw ConfigError("parameter 'addresses': gateway, bridge and jet source addresses must differ");
@@ -22,11 +40,19 @@ const char* toString(Mode m) {
     case Mode::kAutonomy: return "autonomy";
     case Mode::kManual: return "manual";
     case Mode::kWatchdog: return "watchdog";
+    case Mode::kJetSilent: return "jet_silent";
   }
   return "?";
 }
 
-GatewayPolicy::GatewayPolicy(GatewayConfig config, Counters& counters) : cfg_(config), counters_(counters) {
+const char* jetName(int jet) { return jet == 0 ? "port" : "starboard"; }
+
+GatewayPolicy::GatewayPolicy(GatewayConfig config, const models::UsvParams& jets, Counters& counters)
+    : cfg_(std::move(config)),
+      counters_(counters),
+      allocation_(jets),
+      per_jet_(cfg_.command_frames == "jets"),
+      autonomy_jets_(JetAllocation::neutral(kWatchdog)) {
   cfg_.validate();
 }
 
@@ -41,6 +67,10 @@ bool GatewayPolicy::onAutonomy(double surge, double sway, double yaw, double now
   autonomy_.sway = sway;
   autonomy_.yaw = yaw;
   autonomy_.source = kAutonomy;
+  if (per_jet_) {
+    autonomy_jets_ = allocation_.allocate(surge, sway, yaw, kAutonomy);
+    if (allocation_.lastScale() < 1.0) counters_.increment("autonomy_saturated");  // direction kept, scaled down
+  }
   autonomy_at_ = now;
   return true;
 }
@@ -50,38 +80,67 @@ void GatewayPolicy::onManual(const jet::Command& c, double now) {
   manual_at_ = now;
 }
 
-Mode GatewayPolicy::mode(double now) const {
-  if (now - manual_at_ <= cfg_.manual_hold) return Mode::kManual;
-  if (now - autonomy_at_ <= cfg_.watchdog_timeout) return Mode::kAutonomy;
-  return Mode::kWatchdog;
+void GatewayPolicy::onStatus(const jet::Status& s, double now) { heard_at_[s.jet & 1] = now; }
+
+bool GatewayPolicy::answering(int jet, double now) const {
+  return first_tick_ || silentFor(jet, now) <= cfg_.jet_timeout;
 }
 
-std::optional<CanFrame> GatewayPolicy::tick(double now) {
+double GatewayPolicy::silentFor(int jet, double now) const { return now - heard_at_[jet & 1]; }
+
+Mode GatewayPolicy::mode(double now) const {
+  if (now - manual_at_ <= cfg_.manual_hold) return Mode::kManual;
+  if (now - autonomy_at_ > cfg_.watchdog_timeout) return Mode::kWatchdog;
+  if (!answering(0, now) || !answering(1, now)) return Mode::kJetSilent;
+  return Mode::kAutonomy;
+}
+
+std::vector<CanFrame> GatewayPolicy::tick(double now) {
+  if (first_tick_)  // the silence clock of a jet not heard yet starts now
+    for (double& h : heard_at_) h = std::max(h, now);
   const Mode m = mode(now);
   if (m != last_mode_ || first_tick_) {
     if (m == Mode::kManual) counters_.increment("manual_overrides");
     if (m == Mode::kWatchdog && !first_tick_) counters_.increment("watchdog_trips");
     last_mode_ = m;
-    first_tick_ = false;
   }
-  if (m == Mode::kManual) return std::nullopt;  // the bridge drives the jets; we stay off the bus
-  jet::Command c;  // neutral: no thrust, nozzle centred
-  c.source = kWatchdog;
-  if (m == Mode::kAutonomy) c = autonomy_;
-  c.counter = counter_;
+  first_tick_ = false;
+  for (int i = 0; i < 2; ++i) {
+    const bool a = answering(i, now);
+    if (!a && answering_[i]) counters_.increment(std::string(jetName(i)) + "_jet_timeouts");
+    answering_[i] = a;
+  }
+  if (m == Mode::kManual) return {};  // the bridge drives the jets; we stay off the bus
+  const bool drive = m == Mode::kAutonomy;  // otherwise neutral: no thrust, nozzles centred
+  const std::uint8_t counter = counter_;
   counter_ = static_cast<std::uint8_t>((counter_ + 1) & 0x0F);
-  return jet::encodeCommand(c, false, cfg_.addresses);
+  std::vector<CanFrame> out;
+  if (per_jet_) {
+    for (jet::Setpoint s : drive ? autonomy_jets_ : JetAllocation::neutral(kWatchdog)) {
+      s.counter = counter;
+      out.push_back(jet::encodeSetpoint(s, cfg_.addresses));
+    }
+  } else {
+    jet::Command c;
+    c.source = kWatchdog;
+    if (drive) c = autonomy_;
+    c.counter = counter;
+    out.push_back(jet::encodeCommand(c, false, cfg_.addresses));
+  }
+  return out;
 }
 
 double CanGateway::monotonic() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-CanGateway::CanGateway(SocketCanOptions bus, GatewayConfig config, Counters& counters)
-    : CanGateway(std::make_unique<SocketCan>(std::move(bus), counters), config, counters, &CanGateway::monotonic) {}
+CanGateway::CanGateway(SocketCanOptions bus, GatewayConfig config, const models::UsvParams& jets, Counters& counters)
+    : CanGateway(std::make_unique<SocketCan>(std::move(bus), counters), std::move(config), jets, counters,
+                 &CanGateway::monotonic) {}
 
-CanGateway::CanGateway(std::unique_ptr<BusInterface> bus, GatewayConfig config, Counters& counters, Clock clock)
-    : counters_(counters), bus_(std::move(bus)), now_(std::move(clock)), policy_(config, counters) {
+CanGateway::CanGateway(std::unique_ptr<BusInterface> bus, GatewayConfig config, const models::UsvParams& jets,
+                       Counters& counters, Clock clock)
+    : counters_(counters), bus_(std::move(bus)), now_(std::move(clock)), policy_(std::move(config), jets, counters) {
   bus_->open();  // failure is not fatal: poll() retries, diagnostics show the state
 }
 
@@ -100,6 +159,16 @@ BusState CanGateway::state() const {
   return bus_->state();
 }
 
+bool CanGateway::jetAnswering(int jet) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return policy_.answering(jet, now_());
+}
+
+double CanGateway::jetSilentFor(int jet) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return policy_.silentFor(jet, now_());
+}
+
 void CanGateway::spinOnce(double max_wait_s, const GatewayOutputs& out) {
   double t = now_();
   const double wait = std::max(0.0, std::min(max_wait_s, next_tick_ - t));
@@ -110,12 +179,16 @@ void CanGateway::spinOnce(double max_wait_s, const GatewayOutputs& out) {
   for (const CanFrame& f : bus_->receive(t)) handle(f, t, out);
   if (t >= next_tick_) {
     // Fixed rate without drift; after a stall, restart the schedule instead of bursting.
-    next_tick_ = (next_tick_ > 0.0 && t - next_tick_ < policy_.config().period) ? next_tick_ + policy_.config().period
-                                                                                 : t + policy_.config().period;
-    if (auto f = policy_.tick(t)) {
+    const double period = policy_.config().period();
+    next_tick_ = (next_tick_ > 0.0 && t - next_tick_ < period) ? next_tick_ + period : t + period;
+    for (const CanFrame& f : policy_.tick(t)) {
       // A command that cannot leave now is stale by the next period: never queue it for a burst later.
       if (bus_->state() == BusState::kBusOff || bus_->state() == BusState::kDown) counters_.increment("commands_not_sent");
-      else bus_->send(*f);
+      else bus_->send(f);
+    }
+    if (reported_answering_ != policy_.answeringAtTick()) {
+      reported_answering_ = policy_.answeringAtTick();
+      if (out.answering) out.answering(*reported_answering_);
     }
   }
   bus_->flush();
@@ -149,35 +222,33 @@ void CanGateway::handle(const CanFrame& f, double t, const GatewayOutputs& out) 
       return;
     }
   }
-  jet::Command cmd;
-  bool manual = false;
-  jet::Error e = jet::decodeCommand(f, cmd, &manual);
-  if (e == jet::Error::kNone) {
-    if (!manual) {  // another gateway on the bus, or our own echo: not ours to obey
+  const jet::Decoded d = jet::decode(f, policy_.config().addresses);
+  // The counter must follow the sender's previous one; a unit repeating one frame (counter stuck) never passes,
+  // so it does not count as answering.
+  auto inSequence = [&](std::uint8_t counter) {
+    const bool ok = counters_check_.accept(f.id, counter);
+    if (!ok) counters_.increment("counter_jumps");
+    return ok;
+  };
+  using K = jet::Decoded::Kind;
+  switch (d.kind) {
+    case K::kCommand:
+    case K::kSetpoint:  // another gateway on the bus, or ours seen from another socket: not ours to obey
       counters_.increment("foreign_commands");
       return;
-    }
-    if (!counters_check_.accept(f.id, cmd.counter)) {
-      counters_.increment("counter_jumps");
+    case K::kManual:
+      if (!inSequence(d.command.counter)) return;
+      policy_.onManual(d.command, t);
+      if (out.manual) out.manual(d.command);
       return;
-    }
-    policy_.onManual(cmd, t);
-    if (out.manual) out.manual(cmd);
-    return;
-  }
-  if (e == jet::Error::kNotOurs) {
-    jet::Status st;
-    e = jet::decodeStatus(f, st, policy_.config().addresses);
-    if (e == jet::Error::kNone) {
-      if (!counters_check_.accept(f.id, st.counter)) {
-        counters_.increment("counter_jumps");
-        return;
-      }
-      if (out.status) out.status(st);
+    case K::kStatus:
+      if (!inSequence(d.status.counter)) return;
+      policy_.onStatus(d.status, t);
+      if (out.status) out.status(d.status);
       return;
-    }
+    case K::kNone: break;
   }
-  counters_.increment(jet::toString(e));
+  counters_.increment(jet::toString(d.error));
 }
 
 }  // namespace can

@@ -70,6 +70,8 @@ UsvSimulation::UsvSimulation(const Scenario& sc, const Config& cfg)
 
 bool UsvSimulation::setCommand(const models::UsvCommand& c) { return model_.setCommand(c); }
 
+bool UsvSimulation::setJetCommands(const models::JetCommands& c) { return model_.setJetCommands(c); }
+
 const UsvSimulation::Outputs& UsvSimulation::step() {
   model_.step(cfg_.dt, env_);
   ++step_;

@@ -1,6 +1,7 @@
 // UsvSim: the USV simulator for the USV's own master. Owns /clock, integrates the USV on a fixed step,
 // publishes ground truth (metrics only), the GPS-compass (/usv_gps, /usv_heading), the LiDAR point cloud and
-// the scenario's map grid; takes /usv/joystick_cmd, with /usv/manual_cmd taking priority while it is fresh.
+// the scenario's map grid; takes /usv/joystick_cmd, with /usv/manual_cmd taking priority while it is fresh, or
+// with the CAN chain in the loop the per-jet set-points the emulated units act on (~jet_command_topic).
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/QuaternionStamped.h>
 #include <geometry_msgs/TwistStamped.h>
@@ -15,6 +16,7 @@
 #include <memory>
 
 #include "offshore_gnc/JoystickCommand.h"
+#include "offshore_gnc/WaterjetSetpoints.h"
 #include "offshore_gnc/WaterjetStatus.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/faults.h"
@@ -57,8 +59,9 @@ class UsvSimNodelet : public nodelet::Nodelet {
       cfg.usv.type = p.choice("model", "dynamic", {"dynamic", "nomoto"}) == "nomoto" ? models::UsvModelType::Nomoto
                                                                                      : models::UsvModelType::Dynamic3Dof;
       manual_timeout_ = p.number("manual_timeout", 1.0, 0.05, 60);
-      // /usv/waterjet/applied_cmd when the CAN gateway + emulator chain is in the loop (docs/architecture.md)
       command_topic_ = p.text("command_topic", "/usv/joystick_cmd");
+      // /usv/waterjet/applied_setpoints behind the CAN gateway + emulator: the units already chose manual or autonomy
+      jet_command_topic_ = p.text("jet_command_topic", "");
       base_frame_ = p.text("base_frame", "usv/base_link");
       faults_ = std::make_unique<ros_util::FaultInjector>(nh, "usv", std::vector<std::string>{"gps", "lidar"});
       cfg.faults = faults_->plan();
@@ -76,8 +79,12 @@ class UsvSimNodelet : public nodelet::Nodelet {
     lidar_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/usv/lidar/points", 2);
     map_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("/usv/map", 1, true);
     jet_pub_ = nh.advertise<WaterjetStatus>("/usv/waterjet/status", 10);
-    auto_sub_ = nh.subscribe(command_topic_, 10, &UsvSimNodelet::onCommand, this);
-    manual_sub_ = nh.subscribe("/usv/manual_cmd", 10, &UsvSimNodelet::onManual, this);
+    if (!jet_command_topic_.empty()) {
+      auto_sub_ = nh.subscribe(jet_command_topic_, 10, &UsvSimNodelet::onJets, this);
+    } else {
+      auto_sub_ = nh.subscribe(command_topic_, 10, &UsvSimNodelet::onCommand, this);
+      manual_sub_ = nh.subscribe("/usv/manual_cmd", 10, &UsvSimNodelet::onManual, this);
+    }
     if (!scenario_.map.empty()) map_pub_.publish(gridMessage());
 
     static_tf_.sendTransform({ros_util::mountTransform(base_frame_, "usv/lidar", sim::sensorMount(cfg.lidar.mount, cfg.lidar.mount_yaw, false)),
@@ -115,6 +122,14 @@ class UsvSimNodelet : public nodelet::Nodelet {
       return;
     }
     apply(*m);
+  }
+  void onJets(const WaterjetSetpoints::ConstPtr& m) {
+    models::JetCommands c;
+    for (int i = 0; i < 2; ++i) c[i] = {m->rpm[i], m->nozzle[i], m->bucket[i]};
+    std::lock_guard<std::mutex> l(runner_->mutex());
+    if (!sim_->setJetCommands(c))
+      NODELET_ERROR_THROTTLE(1.0, "rejected per-jet set-points (rpm %g/%g): not finite, or the lumped model", c[0].rpm,
+                             c[1].rpm);
   }
   bool apply(const JoystickCommand& m) {
     if (sim_->setCommand({m.surge, m.sway, m.yaw})) return true;
@@ -221,7 +236,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
   std::unique_ptr<sim_ros::SimRunner> runner_;
   std::unique_ptr<ros_util::FaultInjector> faults_;
   Counters counters_;
-  std::string base_frame_, command_topic_;
+  std::string base_frame_, command_topic_, jet_command_topic_;
   double manual_timeout_ = 1.0, last_manual_ = -1e9;
   unsigned long truth_count_ = 0;
   sim::PackedCloud packed_;

@@ -5,7 +5,7 @@
 # (scripts/vm/can-vm.sh), wherever the checkout is (under /tmp too). When neither works the suite FAILS naming
 # the cause (qemu missing, kernel download failed, ...); only OFFSHORE_GNC_ALLOW_SKIP=1 makes that a skip.
 # Also the CanGateway + CanEmulator nodelets end to end (test/unit/can/vcan/e2e.test): always with a native
-# vcan, in the VM only with CAN_E2E=1 (about 150 s under software emulation).
+# vcan, in the VM only with CAN_E2E=1 (about 150 s under software emulation; the VM's limit is then 600 s).
 # Env: TEST_RESULTS_DIR (JUnit XML out), WS (catkin workspace with the built test_can_vcan, can_decode),
 # CAN_VCAN_MODE=vm (the VM even where the host has vcan), CAN_VM_QEMU (the emulator; tests point it nowhere).
 set -uo pipefail
@@ -68,7 +68,8 @@ else
   if ! "$REPO/scripts/vm/can-vm.sh" prepare > "$run/prepare.log" 2>&1; then
     cannot_run "the host kernel has none and the VM cannot be prepared: $(tail -n1 "$run/prepare.log")"
   fi
-  [ "${CAN_E2E:-0}" = 1 ] && sed -i '1i export CAN_E2E=1' "$run/guest.sh"
+  # The nodelets' rostest adds minutes under emulation (rospy and the messages import slowly): a longer VM limit.
+  [ "${CAN_E2E:-0}" = 1 ] && sed -i '1i export CAN_E2E=1' "$run/guest.sh" && export CAN_VM_TIMEOUT="${CAN_VM_TIMEOUT:-600}"
   # Software emulation on a shared host schedules threads late now and then: wider timing tolerance.
   sed -i "1i export CAN_TIMING_SLACK=${CAN_TIMING_SLACK:-0.1}" "$run/guest.sh"
   "$REPO/scripts/vm/can-vm.sh" run "$run/guest.sh" "$run" "$WS" > "$run/vm.log" 2>&1; rc=$?
@@ -97,7 +98,7 @@ else
 fi
 # can_decode over what candump recorded during the run: every kind of frame must decode.
 missing=""
-for kind in waterjet_command waterjet_manual waterjet_status position_rapid vessel_heading cog_sog_rapid; do
+for kind in waterjet_setpoint waterjet_command waterjet_manual waterjet_status position_rapid vessel_heading cog_sog_rapid; do
   grep -q "\"name\":\"$kind\"" "$run/decoded.jsonl" 2>/dev/null || missing="$missing $kind"
 done
 n=$(wc -l < "$run/decoded.jsonl" 2>/dev/null || echo 0)

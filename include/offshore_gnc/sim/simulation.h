@@ -49,6 +49,7 @@ class UsvSimulation {
   };
   UsvSimulation(const Scenario& sc, const Config& cfg);
   bool setCommand(const models::UsvCommand& c);  // false (and counted by the model) when rejected
+  bool setJetCommands(const models::JetCommands& c);  // per-jet set-points (twin propulsion), as setCommand
   const Outputs& step();
   const VehicleState& state() const { return model_.state(); }
   const models::UsvModel& model() const { return model_; }

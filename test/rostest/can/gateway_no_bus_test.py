@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""CanGateway without its interface: diagnostics say the bus is down, bad commands are counted, no crash."""
+"""CanGateway without its interface: diagnostics say the bus is down, bad commands are counted, the jets (never
+heard) are reported not answering, no crash."""
 import math
 import time
 import unittest
@@ -7,7 +8,7 @@ import unittest
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
-from offshore_gnc.msg import JoystickCommand
+from offshore_gnc.msg import JoystickCommand, WaterjetAnswering
 
 
 class GatewayNoBus(unittest.TestCase):
@@ -15,7 +16,10 @@ class GatewayNoBus(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("gateway_no_bus_test")
         cls.statuses = []
+        cls.answering = []
         cls.sub = rospy.Subscriber("/diagnostics", DiagnosticArray, cls.on_diag)
+        cls.answering_sub = rospy.Subscriber("/usv/waterjet/answering", WaterjetAnswering,
+                                             lambda m: cls.answering.append(list(m.answering)))
         cls.pub = rospy.Publisher("/usv/joystick_cmd", JoystickCommand, queue_size=10)
 
     @classmethod
@@ -46,7 +50,17 @@ class GatewayNoBus(unittest.TestCase):
         self.assertIsNotNone(s, "bad commands not counted: %s" % (self.statuses[-1].values if self.statuses else None))
         values = {kv.key: kv.value for kv in s.values}
         self.assertEqual(values["bus_state"], "down")
-        self.assertIn(values["mode"], ("autonomy", "watchdog"))
+        self.assertIn(values["mode"], ("autonomy", "watchdog", "jet_silent"))
+        # No status frame can arrive: after jet_timeout (0.5 s) both jets are reported not answering.
+        s = self.wait_for(lambda s: any(kv.key == "starboard_jet" and kv.value == "not answering" for kv in s.values))
+        self.assertIsNotNone(s, "silent jets not in the diagnostics")
+        values = {kv.key: kv.value for kv in s.values}
+        self.assertEqual(values["port_jet"], "not answering")
+        self.assertGreaterEqual(int(values["port_jet_timeouts"]), 1)
+        end = time.time() + 5.0
+        while time.time() < end and [False, False] not in self.answering:
+            time.sleep(0.05)
+        self.assertIn([False, False], self.answering, "latched /usv/waterjet/answering: %s" % self.answering)
 
 
 if __name__ == "__main__":

@@ -2,6 +2,7 @@
 // encode/decode round trips, and bad input (wrong DLC, unknown ids, out-of-range, counter jumps).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "offshore_gnc/can/decode.h"
@@ -193,6 +194,80 @@ TEST(Waterjet, StatusRoundTripAndBadInput) {
   EXPECT_EQ(cmd.surge, 0.0);
 }
 
+TEST(Waterjet, SetpointGoldenRoundTripAndBadInput) {
+  jet::Setpoint s;
+  s.jet = 0;
+  s.rpm = 1200;     // 0x04B0
+  s.nozzle = -0.25; // -8000 = 0xE0C0
+  s.bucket = 0.5;   // 16000 = 0x3E80
+  s.source = kAutonomy;
+  s.counter = 5;
+  // Proprietary A (PGN 0xEF00, PDU1) to the port jet 0x30 from the gateway 0x20, priority 3 -> 0x0CEF3020.
+  // CRC-8 SAE J1850 over the destination 0x30 + bytes 0..6 (value computed by hand from the definition).
+  const CanFrame f = jet::encodeSetpoint(s);
+  EXPECT_EQ(formatCansend(f), "0CEF3020#B004C0E0803E05FD");
+  EXPECT_EQ(n2k::decodeId(f.id).destination, 0x30);
+  jet::Setpoint back;
+  ASSERT_EQ(jet::decodeSetpoint(f, back), jet::Error::kNone);
+  EXPECT_EQ(back.jet, 0);
+  EXPECT_DOUBLE_EQ(back.rpm, 1200);
+  EXPECT_DOUBLE_EQ(back.nozzle, -0.25);
+  EXPECT_DOUBLE_EQ(back.bucket, 0.5);
+  EXPECT_EQ(back.counter, 5);
+  EXPECT_EQ(back.source, kAutonomy);
+  s.jet = 1;
+  s.source = kWatchdog;
+  const CanFrame g = jet::encodeSetpoint(s);
+  EXPECT_EQ(formatCansend(g).substr(0, 9), "0CEF3120#");  // the starboard jet's address
+  ASSERT_EQ(jet::decodeSetpoint(g, back), jet::Error::kNone);
+  EXPECT_EQ(back.jet, 1);
+  EXPECT_EQ(back.source, kWatchdog);
+  // Not a command or a status: the other decoders leave it alone.
+  jet::Command c;
+  jet::Status st;
+  EXPECT_EQ(jet::decodeCommand(f, c), jet::Error::kNotOurs);
+  EXPECT_EQ(jet::decodeStatus(f, st), jet::Error::kNotOurs);
+  // The port jet's payload under the starboard jet's id fails the CRC (the destination is in it).
+  CanFrame moved = g;
+  std::copy(f.data.begin(), f.data.begin() + 8, moved.data.begin());
+  EXPECT_EQ(jet::decodeSetpoint(moved, back), jet::Error::kChecksum);
+  // Proprietary A to another device is not ours; other addresses move the jets.
+  n2k::IsoId other = n2k::decodeId(f.id);
+  other.destination = 0x50;
+  CanFrame h = f;
+  h.id = n2k::encodeId(other);
+  EXPECT_EQ(jet::decodeSetpoint(h, back), jet::Error::kNotOurs);
+  jet::Addresses moved_jets;
+  moved_jets.jet_base = 0x50;
+  EXPECT_EQ(jet::decodeSetpoint(h, back, moved_jets), jet::Error::kChecksum);  // its CRC was for 0x30
+  // Wrong length, and out of range with a valid CRC: rpm 6001, nozzle beyond full scale, source 5, bit 7.
+  h = f;
+  h.len = 7;
+  EXPECT_EQ(jet::decodeSetpoint(h, back), jet::Error::kLength);
+  auto resealed = [&](int byte, std::uint16_t v) {
+    CanFrame k = f;
+    if (byte == 6) k.data[6] = static_cast<std::uint8_t>(v);
+    else putU16(&k.data[byte], v);
+    k.data[7] = jet::crc(0x30, k.data.data());
+    return k;
+  };
+  EXPECT_EQ(jet::decodeSetpoint(resealed(0, 6001), back), jet::Error::kRange);
+  EXPECT_EQ(jet::decodeSetpoint(resealed(2, static_cast<std::uint16_t>(-32001)), back), jet::Error::kRange);
+  EXPECT_EQ(jet::decodeSetpoint(resealed(4, 32001), back), jet::Error::kRange);
+  EXPECT_EQ(jet::decodeSetpoint(resealed(6, 0x55), back), jet::Error::kRange);
+  EXPECT_EQ(jet::decodeSetpoint(resealed(6, 0x85), back), jet::Error::kRange);
+  EXPECT_EQ(jet::decodeSetpoint(resealed(0, 6000), back), jet::Error::kNone);
+  // Non-finite or out-of-range values never reach the bus as garbage.
+  jet::Setpoint bad;
+  bad.rpm = std::nan("");
+  bad.nozzle = 3.0;
+  bad.bucket = -INFINITY;
+  ASSERT_EQ(jet::decodeSetpoint(jet::encodeSetpoint(bad), back), jet::Error::kNone);
+  EXPECT_EQ(back.rpm, 0.0);
+  EXPECT_EQ(back.nozzle, 1.0);
+  EXPECT_EQ(back.bucket, 0.0);
+}
+
 TEST(Waterjet, CounterCheck) {
   jet::CounterCheck cc;
   EXPECT_TRUE(cc.accept(1, 14));
@@ -251,4 +326,15 @@ TEST(Decode, JsonForEveryKind) {
   EXPECT_EQ(err, "unknown_id");
   EXPECT_FALSE(json("0CFF1020#0000000000000000"));
   EXPECT_EQ(err, "bad_checksum");
+  j = json("0CEF3120#B004C0E0803E05FD");  // the port jet's frame under the starboard jet's id
+  EXPECT_FALSE(j);
+  EXPECT_EQ(err, "bad_checksum");
+  j = json("0CEF3020#B004C0E0803E05FD");
+  ASSERT_TRUE(j);
+  EXPECT_NE(j->find("\"name\":\"waterjet_setpoint\",\"jet\":0,\"rpm\":1200,\"nozzle\":-0.25,\"bucket\":0.5,\"source\":0,"
+                    "\"counter\":5}"),
+            std::string::npos)
+      << *j;
+  EXPECT_FALSE(json("0CEF5020#B004C0E0803E05FD"));  // Proprietary A to another device
+  EXPECT_EQ(err, "unknown_id");
 }

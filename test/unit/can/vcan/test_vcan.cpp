@@ -55,13 +55,12 @@ class Listener {
     std::lock_guard<std::mutex> l(m_);
     return frames_;
   }
-  std::vector<std::pair<double, jet::Command>> commands(double from = 0.0) {
-    std::vector<std::pair<double, jet::Command>> out;
+  // The gateway's per-jet set-point frames from `from` on.
+  std::vector<std::pair<double, jet::Setpoint>> setpoints(double from = 0.0) {
+    std::vector<std::pair<double, jet::Setpoint>> out;
     for (const auto& tf : frames()) {
-      jet::Command c;
-      bool manual = true;
-      if (tf.first >= from && jet::decodeCommand(tf.second, c, &manual) == jet::Error::kNone && !manual)
-        out.push_back({tf.first, c});
+      jet::Setpoint s;
+      if (tf.first >= from && jet::decodeSetpoint(tf.second, s) == jet::Error::kNone) out.push_back({tf.first, s});
     }
     return out;
   }
@@ -75,10 +74,12 @@ class Listener {
   std::thread thread_;
 };
 
+const models::UsvParams kJets;  // the built-in thesis jets
+
 // A gateway spinning in its own thread, like the nodelet runs it.
 class RunningGateway {
  public:
-  explicit RunningGateway(GatewayConfig cfg, GatewayOutputs out = {}) : gw(opts(), cfg, counters), out_(out) {
+  explicit RunningGateway(GatewayConfig cfg, GatewayOutputs out = {}) : gw(opts(), cfg, kJets, counters), out_(out) {
     thread_ = std::thread([this] {
       while (!stop_) gw.spinOnce(0.01, out_);
     });
@@ -97,6 +98,38 @@ class RunningGateway {
 };
 
 void sleepFor(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
+
+// The two waterjet units (the emulator on its own socket) acting on the frames and answering at 10 Hz.
+class RunningJets {
+ public:
+  RunningJets() : bus_(opts(), counters), units_(kJets, 0.5, {}, counters) {
+    EXPECT_TRUE(bus_.open()) << bus_.lastError();
+    thread_ = std::thread([this] {
+      double next = 0.0;
+      while (!stop_) {
+        bus_.wait(0.005);
+        const double t = CanGateway::monotonic();
+        for (const auto& f : bus_.receive(t)) units_.onFrame(f, t);
+        if (t < next) continue;
+        next = t + 0.1;
+        for (const auto& f : units_.step(t)) bus_.send(f);
+        bus_.flush();
+      }
+    });
+  }
+  ~RunningJets() {
+    stop_ = true;
+    thread_.join();
+  }
+  Counters counters;
+
+ private:
+  SocketCan bus_;
+  WaterjetEmulator units_;
+  std::mutex m_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
 
 // Keeps autonomy commands coming at 50 Hz until stopped.
 class Autonomy {
@@ -159,32 +192,41 @@ TEST(Vcan, RawSocketWithCanUtils) {
   EXPECT_DOUBLE_EQ(back.surge, 0.5);
 }
 
-TEST(Vcan, CommandsAtTheSetRate) {
+TEST(Vcan, PerJetCommandsAtTheSetRate) {
   Listener bus;
+  RunningJets jets;
   GatewayConfig cfg;
-  cfg.period = 0.05;
+  cfg.command_rate = 20.0;
   RunningGateway g(cfg);
   Autonomy a(g.gw);
   sleepFor(0.3);
   const double t0 = CanGateway::monotonic();
   sleepFor(2.0);
   const double t1 = CanGateway::monotonic();
-  auto cmds = bus.commands(t0);
-  int in_window = 0;
-  for (const auto& c : cmds)
-    if (c.first < t1) ++in_window;
-  EXPECT_NEAR(in_window, 40, 4) << "20 Hz for 2 s";
-  for (const auto& c : cmds) EXPECT_EQ(c.second.source, kAutonomy);
-  for (std::size_t i = 1; i < cmds.size(); ++i) {
-    EXPECT_LT(cmds[i].first - cmds[i - 1].first, cfg.period + kSlack);
-    EXPECT_EQ(cmds[i].second.counter, (cmds[i - 1].second.counter + 1) & 0xF);
+  for (int j = 0; j < 2; ++j) {
+    std::vector<std::pair<double, jet::Setpoint>> cmds;
+    for (const auto& c : bus.setpoints(t0))
+      if (c.second.jet == j) cmds.push_back(c);
+    int in_window = 0;
+    for (const auto& c : cmds)
+      if (c.first < t1) ++in_window;
+    EXPECT_NEAR(in_window, 40, 4) << "20 Hz for 2 s to jet " << j;
+    for (const auto& c : cmds) EXPECT_EQ(c.second.source, kAutonomy) << "jet " << j;
+    for (std::size_t i = 1; i < cmds.size(); ++i) {
+      EXPECT_LT(cmds[i].first - cmds[i - 1].first, cfg.period() + kSlack);
+      EXPECT_EQ(cmds[i].second.counter, (cmds[i - 1].second.counter + 1) & 0xF);
+    }
   }
+  EXPECT_TRUE(g.gw.jetAnswering(0) && g.gw.jetAnswering(1));
+  EXPECT_EQ(g.counters.get("counter_jumps"), 0u);
+  EXPECT_EQ(jets.counters.get("counter_jumps"), 0u);
 }
 
 TEST(Vcan, ManualSuppressesAutonomyWithinOnePeriodAndWatchdogSendsNeutral) {
   Listener bus;
+  RunningJets jets;
   GatewayConfig cfg;
-  cfg.period = 0.05;
+  cfg.command_rate = 20.0;
   cfg.watchdog_timeout = 0.4;
   cfg.manual_hold = 0.3;
   std::atomic<int> manual_seen{0};
@@ -209,7 +251,7 @@ TEST(Vcan, ManualSuppressesAutonomyWithinOnePeriodAndWatchdogSendsNeutral) {
   }
   const double t_manual_end = CanGateway::monotonic();
   EXPECT_GE(manual_seen.load(), 9);
-  auto during = bus.commands(t_manual + cfg.period + kSlack);
+  auto during = bus.setpoints(t_manual + cfg.period() + kSlack);
   int autonomy_during = 0;
   for (const auto& c : during)
     if (c.first < t_manual_end) ++autonomy_during;
@@ -217,7 +259,7 @@ TEST(Vcan, ManualSuppressesAutonomyWithinOnePeriodAndWatchdogSendsNeutral) {
   EXPECT_EQ(g.counters.get("manual_overrides"), 1u);
   // Manual released: autonomy back after the hold.
   sleepFor(cfg.manual_hold + 0.2);
-  auto back = bus.commands(t_manual_end + cfg.manual_hold + cfg.period + kSlack);
+  auto back = bus.setpoints(t_manual_end + cfg.manual_hold + cfg.period() + kSlack);
   ASSERT_FALSE(back.empty());
   EXPECT_EQ(back.back().second.source, kAutonomy);
   // Autonomy stops: neutral within timeout + one period.
@@ -225,15 +267,16 @@ TEST(Vcan, ManualSuppressesAutonomyWithinOnePeriodAndWatchdogSendsNeutral) {
   const double t_stop = CanGateway::monotonic();
   sleepFor(cfg.watchdog_timeout + 0.3);
   double first_neutral = -1;
-  for (const auto& c : bus.commands(t_stop))
+  for (const auto& c : bus.setpoints(t_stop))
     if (c.second.source == kWatchdog) {
       first_neutral = c.first;
-      EXPECT_EQ(c.second.surge, 0.0);
-      EXPECT_EQ(c.second.yaw, 0.0);
+      EXPECT_EQ(c.second.rpm, 0.0);
+      EXPECT_EQ(c.second.nozzle, 0.0);
+      EXPECT_EQ(c.second.bucket, 0.0);
       break;
     }
   ASSERT_GT(first_neutral, 0.0) << "no neutral command";
-  EXPECT_LE(first_neutral - t_stop, cfg.watchdog_timeout + cfg.period + kSlack);
+  EXPECT_LE(first_neutral - t_stop, cfg.watchdog_timeout + cfg.period() + kSlack);
   EXPECT_EQ(g.gw.mode(), Mode::kWatchdog);
   EXPECT_GE(g.counters.get("watchdog_trips"), 1u);
 }
@@ -260,14 +303,14 @@ TEST(Vcan, BusOffReportedAndRecovered) {
   EXPECT_GE(g.counters.get("restart_requests"), 1u);  // libsocketcan asked; vcan refuses it
   const double t_off = CanGateway::monotonic();
   sleepFor(0.2);
-  EXPECT_TRUE(bus.commands(t_off).empty()) << "nothing is sent while bus-off";
+  EXPECT_TRUE(bus.setpoints(t_off).empty()) << "nothing is sent while bus-off";
   e.id = CAN_ERR_RESTARTED;
   injector.send(e);
   injector.flush();
   sleepFor(0.3);
   EXPECT_EQ(g.gw.state(), BusState::kErrorActive);
   EXPECT_EQ(g.counters.get("restarted"), 1u);
-  EXPECT_FALSE(bus.commands(CanGateway::monotonic() - 0.2).empty()) << "commands flow again";
+  EXPECT_FALSE(bus.setpoints(CanGateway::monotonic() - 0.2).empty()) << "commands flow again";
 }
 
 TEST(Vcan, BadInputCountedNeverFatal) {
@@ -278,6 +321,8 @@ TEST(Vcan, BadInputCountedNeverFatal) {
   sh("cansend vcan0 18EEFF05#0102030405060708");  // unknown id
   sh("cansend vcan0 123#00");                     // standard frame
   sh("cansend vcan0 10FF2030#70170000000000" "00");  // status, bad CRC
+  sh("cansend vcan0 0CEF3020#B004C0E0803E05FE");       // per-jet set-point, bad CRC
+  sh("cansend vcan0 0CEF3021#B004C0E0803E05FD");       // another gateway's (0x21) set-point: not ours to obey
   jet::Status s;
   s.counter = 1;
   Counters c;
@@ -290,7 +335,8 @@ TEST(Vcan, BadInputCountedNeverFatal) {
   sleepFor(0.3);
   EXPECT_EQ(g.counters.get("wrong_dlc"), 1u);
   EXPECT_GE(g.counters.get("unknown_id"), 2u);
-  EXPECT_EQ(g.counters.get("bad_checksum"), 1u);
+  EXPECT_EQ(g.counters.get("bad_checksum"), 2u);
+  EXPECT_EQ(g.counters.get("foreign_commands"), 1u);
   EXPECT_EQ(g.counters.get("counter_jumps"), 1u);
 }
 
@@ -310,7 +356,7 @@ TEST(Vcan, SurvivesInterfaceDownUpAndRecreate) {
     bus = &l;
     sleepFor(0.3);
     EXPECT_EQ(g.gw.state(), BusState::kErrorActive);
-    EXPECT_FALSE(bus->commands().empty()) << "commands after down/up";
+    EXPECT_FALSE(bus->setpoints().empty()) << "commands after down/up";
   }
   sh("ip link del vcan0");
   sleepFor(0.2);
@@ -319,16 +365,17 @@ TEST(Vcan, SurvivesInterfaceDownUpAndRecreate) {
   {
     Listener l;
     sleepFor(0.3);
-    EXPECT_FALSE(l.commands().empty()) << "commands after the interface was re-created";
+    EXPECT_FALSE(l.setpoints().empty()) << "commands after the interface was re-created";
   }
   EXPECT_GE(g.counters.get("interface_down"), 1u);
   EXPECT_GE(g.counters.get("reopened"), 1u);
 }
 
-TEST(Vcan, EmulatorAndGatewayEndToEnd) {
+TEST(Vcan, EmulatorAndGatewayEndToEndAndASilentJet) {
   std::mutex m;
   std::vector<jet::Status> statuses;
   std::vector<n2k::PositionRapid> fixes;
+  std::vector<std::array<bool, 2>> answering;
   GatewayOutputs out;
   out.status = [&](const jet::Status& s) {
     std::lock_guard<std::mutex> l(m);
@@ -338,34 +385,63 @@ TEST(Vcan, EmulatorAndGatewayEndToEnd) {
     std::lock_guard<std::mutex> l(m);
     fixes.push_back(p);
   };
+  out.answering = [&](const std::array<bool, 2>& a) {
+    std::lock_guard<std::mutex> l(m);
+    answering.push_back(a);
+  };
   GatewayConfig cfg;
   RunningGateway g(cfg, out);
   Autonomy a(g.gw, 1.0);
   Counters ec;
   SocketCan dev(opts(), ec);
   ASSERT_TRUE(dev.open());
-  WaterjetEmulator jets(WaterjetModel{}, {}, ec);
+  WaterjetEmulator jets(kJets, 0.5, {}, ec);
   GpsCompassEmulator gps;
-  const double t0 = CanGateway::monotonic();
-  while (CanGateway::monotonic() - t0 < 1.5) {
-    dev.wait(0.05);
-    const double t = CanGateway::monotonic();
-    for (const auto& f : dev.receive(t)) jets.onFrame(f, t);
-    for (const auto& f : jets.step(t)) dev.send(f);
-    GpsCompassSample s;
-    s.lat_deg = 61.45;
-    s.lon_deg = 23.72;
-    for (const auto& f : gps.frames(s)) dev.send(f);
-    dev.flush();
+  auto run = [&](double seconds) {
+    const double t0 = CanGateway::monotonic();
+    while (CanGateway::monotonic() - t0 < seconds) {
+      dev.wait(0.05);
+      const double t = CanGateway::monotonic();
+      for (const auto& f : dev.receive(t)) jets.onFrame(f, t);
+      for (const auto& f : jets.step(t)) dev.send(f);
+      GpsCompassSample s;
+      s.lat_deg = 61.45;
+      s.lon_deg = 23.72;
+      for (const auto& f : gps.frames(s)) dev.send(f);
+      dev.flush();
+    }
+  };
+  run(2.0);
+  const JetAllocation alloc(kJets);
+  const auto want = alloc.allocate(1.0, 0.0, 0.1, kAutonomy);  // what Autonomy asks for
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(jets.appliedSource(i), kAutonomy);
+    EXPECT_NEAR(jets.applied()[i].rpm, alloc.toModel(want[i]).rpm, 0.5);
+    EXPECT_NEAR(jets.applied()[i].bucket, want[i].bucket, 1e-4);
   }
-  EXPECT_EQ(jets.applied().source, kAutonomy);
-  EXPECT_DOUBLE_EQ(jets.applied().surge, 1.0);
-  std::lock_guard<std::mutex> l(m);
-  ASSERT_GE(statuses.size(), 10u);
-  EXPECT_GT(statuses.back().rpm, 1000.0) << "the jets spun up on the commands sent over vcan0";
-  ASSERT_GE(fixes.size(), 5u);
-  EXPECT_NEAR(*fixes.back().lat_deg, 61.45, 1e-7);
+  {
+    std::lock_guard<std::mutex> l(m);
+    ASSERT_GE(statuses.size(), 10u);
+    EXPECT_GT(statuses.back().rpm, 1000.0) << "the jets spun up on the commands sent over vcan0";
+    ASSERT_GE(fixes.size(), 5u);
+    EXPECT_NEAR(*fixes.back().lat_deg, 61.45, 1e-7);
+  }
   EXPECT_EQ(ec.get("bad_checksum"), 0u);
+  EXPECT_TRUE(g.gw.jetAnswering(0) && g.gw.jetAnswering(1));
+  // The starboard unit stops answering: reported, counted, and the port unit gets the neutral command.
+  jets.setSilent(1, true);
+  run(cfg.jet_timeout + 0.5 + kSlack);
+  EXPECT_FALSE(g.gw.jetAnswering(1));
+  EXPECT_TRUE(g.gw.jetAnswering(0));
+  EXPECT_EQ(g.gw.mode(), Mode::kJetSilent);
+  EXPECT_EQ(g.counters.get("starboard_jet_timeouts"), 1u);
+  EXPECT_EQ(jets.appliedSource(0), kWatchdog);
+  EXPECT_EQ(jets.applied()[0].rpm, kJets.rpm_min);
+  EXPECT_EQ(jets.applied()[0].bucket, 0.0);
+  std::lock_guard<std::mutex> l(m);
+  ASSERT_GE(answering.size(), 2u);
+  EXPECT_TRUE(answering.back()[0]);
+  EXPECT_FALSE(answering.back()[1]);
 }
 
 TEST(Vcan, CanFdFrameWhenSupported) {
