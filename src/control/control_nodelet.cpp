@@ -23,6 +23,7 @@
 
 #include "offshore_gnc/control/control_loop.h"
 #include "offshore_gnc/ros/conversions.h"
+#include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/ros/reconfigure.h"
@@ -70,6 +71,16 @@ class ControlNodelet : public nodelet::Nodelet {
                 why.empty() ? "controlling" : "neutral command: " + why);
       ros_util::addCounters(s, loop_->counters(), {"stale_input", "bad_reference"});
       ros_util::addCounters(s, loop_->controllerCounters(), {"nan_state", "bad_reference"});
+      if (const control::UsvController* usv = loop_->usvController()) {
+        // dynamic positioning's state while it holds (its last step within a second of the last command)
+        const control::DpOutput& dp = usv->stationKeeping();
+        if (ros::Time::now().toSec() - dp.t < 1.0) {
+          s.add("station keeping", dp.weathervaning ? "weathervaning (bow into the current)" : "hold heading");
+          s.addf("distance from the hold point [m]", "%.2f", dp.distance);
+          s.addf("held heading [deg]", "%.1f", rad2deg(dp.heading));
+          s.addf("learnt steady force [N]", "%.0f", dp.steady_force.norm());
+        }
+      }
     });
     timer_ = nh.createTimer(ros::Duration(1.0 / cp.rate), &ControlNodelet::onTimer, this);
     NODELET_INFO("%s control at %.1f Hz", cp.vehicle.c_str(), cp.rate);

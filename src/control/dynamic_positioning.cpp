@@ -123,6 +123,8 @@ DpOutput DynamicPositioning::update(const VehicleState& s, const Eigen::Vector2d
                                   : off;  // else back to the hold's heading, within a second
   heading_ref_ = wrapAngle(heading_ref_ + std::clamp(rate, -p_.turn_rate, p_.turn_rate) * dt_);
   out.heading = heading_ref_;
+  out.weathervaning = into_force_;
+  out.t = s.t;
   out.body_force = toBody(out.force, s.yaw);
   return out;
 }

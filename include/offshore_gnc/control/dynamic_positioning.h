@@ -47,6 +47,8 @@ struct DpOutput {
   Eigen::Vector2d body_force = Eigen::Vector2d::Zero();   // the same in body axes (surge, sway) [N]
   Eigen::Vector2d steady_force = Eigen::Vector2d::Zero(); // the integral's: the current's push, reversed [N]
   double distance = 0.0;                    // from the hold point [m]
+  bool weathervaning = false;               // the heading is the bow into the current's (else the hold's own)
+  double t = -1e300;                        // the step's time [s]
 };
 
 class DynamicPositioning {
