@@ -73,6 +73,8 @@ void DynamicPositioning::setParams(const DpParams& p) {
   if (refilter) makeFilters();
 }
 
+void DynamicPositioning::resume() { primed_ = false; }
+
 void DynamicPositioning::reset() {
   integral_.setZero();
   force_lp_.setZero();
@@ -85,8 +87,6 @@ DpOutput DynamicPositioning::update(const VehicleState& s, const Eigen::Vector2d
   const Eigen::Vector2d v_ned(c * s.velocity.x() - sn * s.velocity.y(), sn * s.velocity.x() + c * s.velocity.y());
   if ((point - point_).norm() > 20.0) reset();  // a new hold far away: the current there is learnt afresh
   point_ = point;
-  if (s.t - last_t_ > 2.5 * dt_) primed_ = false;  // back in station keeping: the filters restart, the force stays
-  last_t_ = s.t;
   if (!primed_) {
     fn_.reset(s.position.x());
     fe_.reset(s.position.y());

@@ -68,6 +68,8 @@ void UsvController::setParams(const UsvControlParams& p) {
 
 JoystickOut UsvController::update(const VehicleState& s, const MotionReference& r) {
   JoystickOut out;
+  const bool was_holding = holding_;
+  holding_ = false;
   if (!stateFinite(s)) {
     counters_.increment("nan_state");
     return out;
@@ -104,11 +106,14 @@ JoystickOut UsvController::update(const VehicleState& s, const MotionReference& 
   double u_ref = r.surge;
   double heading = r.heading;
   if (r.mode == ReferenceMode::kHold) {
+    if (!was_holding) dp_->resume();
+    holding_ = true;
     dp_out_ = dp_->update(s, r.point.head<2>(), r.heading);
     out.surge = jets_.surgeFor(dp_out_.body_force.x());
     out.sway = clamp1(dp_out_.body_force.y() / jets_.sideForceFull());
     surge_.reset();
     out.yaw = clamp1(yaw_.update(angleDiff(dp_out_.heading, yaw_f_), -r_f, p_.dt));
+    keepYawAuthority(out);
     return out;
   }
   if (p_.turn_first && r.mode == ReferenceMode::kFollow) {
@@ -124,6 +129,23 @@ JoystickOut UsvController::update(const VehicleState& s, const MotionReference& 
     out.surge = p_.turn_thrust;
   out.yaw = clamp1(yaw_.update(angleDiff(heading, yaw_f_), -r_f, p_.dt));
   return out;
+}
+
+void UsvController::keepYawAuthority(JoystickOut& out) const {
+  // The allocation scales all three axes alike when the jets saturate (the direction a joystick asks for is
+  // kept), which in station keeping starved the heading exactly when the side force was largest, beam on to a
+  // current: the yaw loop rang and the boat circled. Here the heading comes first: surge and sway are scaled down
+  // together until the yaw fits as asked.
+  jets_.allocate({out.surge, out.sway, out.yaw});
+  if (jets_.lastScale() >= 1.0) return;
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 20; ++i) {
+    const double k = 0.5 * (lo + hi);
+    jets_.allocate({k * out.surge, k * out.sway, out.yaw});
+    (jets_.lastScale() >= 1.0 ? lo : hi) = k;
+  }
+  out.surge *= lo;
+  out.sway *= lo;
 }
 
 const ParamTable<AcolorControlParams>& AcolorControlParams::table() {

@@ -30,7 +30,6 @@ bool JoystickAllocation::tryAllocate(const UsvCommand& c, JetCommands& out) cons
   const JetForces& f = forces_;
   // eq. 3.25: the nozzle position is the negated lookup value (P < 0 turns to starboard)
   const double p_r = -std::copysign(joy_nozzle_(std::abs(c.yaw) * p_.joy_r_full), c.yaw);
-  const double a_r = f.angle(p_r);
   // The surge axis asks for the thesis' force: rpm(|surge|) through the bucket b0. The engines run at least as
   // fast as the sway and yaw axes need (a nozzle turns the boat in proportion to the jet's thrust), the buckets
   // then trimmed so that the surge force stays what the surge axis asked for.
@@ -39,8 +38,13 @@ bool JoystickAllocation::tryAllocate(const UsvCommand& c, JetCommands& out) cons
   // (eq. 3.11), so its engine speed is rpm_full sqrt(|sway|). (Through the surge axis' rpm table a small sway
   // gave almost nothing at idle and DP's lateral corrections came 5-7 times weaker than asked.)
   const double rpm_y = rpm_full_ * std::sqrt(std::abs(c.sway));
-  const double rpm = std::max(
-      rpm_y, joy_rpm_(std::max(std::abs(c.surge), p_.yaw_rpm_share * std::abs(c.yaw)) * p_.joy_u_full));
+  const double rpm_sy = joy_rpm_(std::max(std::abs(c.surge), p_.yaw_rpm_share * std::abs(c.yaw)) * p_.joy_u_full);
+  const double rpm = std::max(rpm_y, rpm_sy);
+  // Yaw asks for the moment the thesis' nozzles give at the surge and yaw axes' own rpm: where sway runs the
+  // engines faster, the yaw's nozzle angle shrinks to match (else the same yaw turned the boat up to ten times
+  // harder at full sway and the heading loop rang at 2 s in station keeping).
+  const double a_r = std::asin(std::clamp(std::sin(f.angle(p_r)) * f.grossThrust(0.0, rpm_sy, p_r) /
+                                              f.grossThrust(0.0, rpm, p_r), -1.0, 1.0));
   const double b0 = std::clamp(c.surge / p_.bucket_band, -1.0, 1.0);
   const double t_rpm = f.grossThrust(0.0, rpm, p_r);
   const double g0 = f.bucketGain(b0) * f.grossThrust(0.0, rpm_s, p_r) / t_rpm;

@@ -56,7 +56,11 @@ class DynamicPositioning {
   DynamicPositioning(const DpParams& p, double dt);
   // `heading` is the reference heading of the hold (e.g. the path's last leg), used until a steady force is learnt.
   DpOutput update(const VehicleState& s, const Eigen::Vector2d& point, double heading);
-  void reset();  // forget the learnt force (a new hold point far from the last)
+  void reset();   // forget the learnt force (a new hold point far from the last)
+  // Back to station keeping after something else (path following, neutral): the filters and the held heading
+  // restart, the learnt force stays. Not from gaps in the state's stamps: on a loaded vehicle computer the
+  // odometry comes late now and then, and each restart turned the bow back to the hold's heading (beam on).
+  void resume();
   void setParams(const DpParams& p);  // validates; keeps the learnt force
   const DpParams& params() const { return p_; }
 
@@ -70,7 +74,7 @@ class DynamicPositioning {
   FeedbackFilter fn_, fe_, fvn_, fve_;
   Eigen::Vector2d integral_ = Eigen::Vector2d::Zero(), force_lp_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d point_ = Eigen::Vector2d::Constant(1e300);
-  double heading_ref_ = 0.0, last_t_ = -1e300;
+  double heading_ref_ = 0.0;
   bool primed_ = false, into_force_ = false;
 };
 

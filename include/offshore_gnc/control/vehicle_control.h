@@ -60,7 +60,9 @@ class UsvController {
   // The jets' allocation (models::UsvParams' thesis values, as the Girona500's controller takes its thrusters
   // from models::AuvParams): station keeping asks forces, the joystick axes are not linear in them.
   models::JoystickAllocation jets_{models::UsvParams()};
+  void keepYawAuthority(JoystickOut& out) const;  // station keeping: the heading first when the jets saturate
   DpOutput dp_out_;
+  bool holding_ = false;  // the last step was station keeping
   double yaw_unwrapped_ = 0.0, yaw_prev_ = 0.0, yaw_f_ = 0.0, u_f_prev_ = 0.0;
   bool primed_ = false;
   Counters counters_;
