@@ -19,6 +19,8 @@ const ParamTable<LosParams>& LosParams::table() {
       .flag("adaptive_crab", &P::adaptive_crab, "estimate the crab (sideslip) angle (adaptive LOS)")
       .number("crab_gain", &P::crab_gain, 0.0, 1.0, "1/(m s)", "gain of the crab-angle estimate")
       .number("crab_limit", &P::crab_limit, 0.0, kPi / 2, "rad", "largest magnitude of the crab-angle estimate")
+      .flag("crab_ned", &P::crab_ned,
+            "keep the crab estimate as a NED vector (current over speed), so legs of other directions get their own")
       .number("acceptance_radius", &P::acceptance_radius, 0.01, 1000.0, "m",
               "circle (USV, 2 L_USV) or sphere (AUV) of acceptance")
       .flag("sphere", &P::sphere, "3-D sphere of acceptance (AUV) instead of the 2-D circle")
@@ -234,8 +236,16 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
     integral_ = std::clamp(integral_, -imax, imax);
   }
   if (p_.adaptive_crab) {
-    beta_hat_ += dt * p_.crab_gain * delta / std::sqrt(delta * delta + e * e) * e;
-    beta_hat_ = std::clamp(beta_hat_, -p_.crab_limit, p_.crab_limit);
+    const double step = dt * p_.crab_gain * delta / std::sqrt(delta * delta + e * e) * e;
+    if (p_.crab_ned) {
+      // the same update along the leg's starboard normal; the component along the leg is not observable on it
+      const Eigen::Vector2d n(-std::sin(chi_p), std::cos(chi_p));
+      crab_ned_ += step * n;
+      if (crab_ned_.norm() > p_.crab_limit) crab_ned_ *= p_.crab_limit / crab_ned_.norm();
+      beta_hat_ = crab_ned_.dot(n);
+    } else {
+      beta_hat_ = std::clamp(beta_hat_ + step, -p_.crab_limit, p_.crab_limit);
+    }
   }
   const double chi_r = std::atan(-p_.kp * e - p_.ki * integral_);  // eq. 4.10
   o.mode = Mode::kFollowPath;
