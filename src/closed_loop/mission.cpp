@@ -19,7 +19,23 @@ void record(VehicleRecord& r, const VehicleState& truth, long step, const guidan
             const guidance::GuidancePipeline& pipeline) {
   if (step % 5 == 0) r.truth.emplace_back(truth.t, truth.position.x(), truth.position.y(), truth.position.z());
   if (!g) return;
-  if (g->los.mode == guidance::Mode::kFollowPath) r.xte.emplace_back(truth.t, g->los.cross_track_error);
+  if (g->los.mode == guidance::Mode::kFollowPath) {
+    r.xte.emplace_back(truth.t, g->los.cross_track_error);
+    // as report.split_tracking: the leg from waypoint k-1 to k of the path followed, e positive to starboard
+    const std::vector<Eigen::Vector3d>& path = pipeline.plannedPath();
+    const std::size_t k = g->los.active_leg;
+    double e_truth = kNaN;
+    if (k >= 1 && k < path.size()) {
+      const Eigen::Vector2d a = path[k - 1].head<2>(), d = path[k].head<2>() - a, p = truth.position.head<2>() - a;
+      if (d.norm() > 0.0) e_truth = (d.x() * p.y() - d.y() * p.x()) / d.norm();
+    }
+    if (k >= 2) {
+      r.xte_tracking.emplace_back(truth.t, g->los.cross_track_error);
+      r.xte_tracking_truth.emplace_back(truth.t, e_truth);
+    } else {
+      r.xte_approach_truth.emplace_back(truth.t, e_truth);
+    }
+  }
   if (g->planned_changed && pipeline.plannedPath().size() > r.planned.size()) r.planned = pipeline.plannedPath();
   if (g->boxes_changed) r.boxes = pipeline.plan().boxes;
 }
@@ -32,10 +48,17 @@ double percentile(std::vector<double> v, double q) {
   return v[std::clamp<std::size_t>(k, 1, v.size()) - 1];
 }
 
-void finish(VehicleRecord& r, const std::string& phase) {
+guidance::TrackingMetrics metricsOf(const std::vector<Eigen::Vector2d>& samples) {
   std::vector<double> e;
-  for (const auto& s : r.xte) e.push_back(s.y());
-  r.metrics = guidance::computeMetrics(e);
+  for (const auto& s : samples) e.push_back(s.y());
+  return guidance::computeMetrics(e);  // NaN samples (no leg) skipped
+}
+
+void finish(VehicleRecord& r, const std::string& phase) {
+  r.metrics = metricsOf(r.xte);
+  r.tracking = metricsOf(r.xte_tracking);
+  r.tracking_truth = metricsOf(r.xte_tracking_truth);
+  r.approach_truth = metricsOf(r.xte_approach_truth);
   r.final_phase = phase;
 }
 }  // namespace

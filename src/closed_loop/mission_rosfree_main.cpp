@@ -76,14 +76,16 @@ int main(int argc, char** argv) {
     std::printf(
         "{\"success\": %s, \"outcome\": %s, \"usv_rmse_m\": %s, \"usv_sd_m\": %s, \"usv_mae_m\": %s, "
         "\"usv_xte_samples\": %zu, \"auv_rmse_m\": %s, \"auv_sd_m\": %s, \"auv_mae_m\": %s, \"auv_xte_samples\": %zu, "
+        "\"auv_approach_rmse_m\": %s, \"auv_rmse_estimate_m\": %s, "
         "\"target_error_m\": %s, \"detection_time_s\": %s, \"min_clearance_m\": %s, "
         "\"usv_final_distance_to_target_m\": %s, \"usv_wait_drift_m\": %s, \"usv_hold_p95_m\": %s, "
         "\"usv_final_phase\": %s, \"auv_final_phase\": %s, "
         "\"sim_time_s\": %s, \"wall_time_s\": %s}\n",
         r.success ? "true" : "false", str(r.reason).c_str(), num(r.usv.metrics.rmse).c_str(),
         num(r.usv.metrics.sd).c_str(), num(r.usv.metrics.mae).c_str(), r.usv.metrics.samples,
-        num(r.auv.metrics.rmse).c_str(), num(r.auv.metrics.sd).c_str(), num(r.auv.metrics.mae).c_str(),
-        r.auv.metrics.samples, num(r.target_error_m).c_str(), num(r.detection_time_s).c_str(),
+        num(r.auv.tracking_truth.rmse).c_str(), num(r.auv.tracking_truth.sd).c_str(),
+        num(r.auv.tracking_truth.mae).c_str(), r.auv.tracking_truth.samples, num(r.auv.approach_truth.rmse).c_str(),
+        num(r.auv.tracking.rmse).c_str(), num(r.target_error_m).c_str(), num(r.detection_time_s).c_str(),
         num(r.min_clearance_m).c_str(), num(r.usv_final_distance_to_target_m).c_str(),
         num(r.usv_wait_drift_m).c_str(), num(r.usv_hold_p95_m).c_str(), str(r.usv.final_phase).c_str(), str(r.auv.final_phase).c_str(), num(r.sim_time_s).c_str(),
         num(r.wall_time_s).c_str());

@@ -72,8 +72,11 @@ int main() {
         control::UsvControlParams::table(), {{"default", control::UsvControlParams()}});
   table("Girona500 control", "`config/control/girona500.yaml` (thesis Table 4.3).",
         control::Girona500ControlParams::table(), {{"default", control::Girona500ControlParams()}});
-  table("aColor control", "`config/control/acolor.yaml` (thesis Table 4.2).", control::AcolorControlParams::table(),
-        {{"default", control::AcolorControlParams()}});
+  table("aColor control",
+        "`config/control/acolor.yaml` (thesis Table 4.2); in simulation `config/control/acolor_sim.yaml` over it "
+        "(the simulated aColor's yaw gains, docs/guidance-control.md). The surge PWM is the one that holds guidance's "
+        "speed on the aColor model (no parameter).",
+        control::AcolorControlParams::table(), {{"default", control::AcolorControlParams()}});
   table("USV mission", "`config/mission/usv.yaml` -> the UsvMission nodelet.", mission::UsvMissionParams::table(),
         {{"default", mission::UsvMissionParams()}});
   table("AUV mission", "`config/mission/auv.yaml` -> the AuvMission nodelet.", mission::AuvMissionParams::table(),

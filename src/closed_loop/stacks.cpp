@@ -62,13 +62,16 @@ guidance::GuidanceParams readGuidance(const std::string& file) {
   return g;
 }
 
-control::ControlLoopParams readControl(const std::string& file) {
-  const YAML::Node y = loadYaml(file);
+// The files in order, each over the one before (the launch files' rosparam loads).
+control::ControlLoopParams readControl(const std::vector<std::string>& files) {
   control::ControlLoopParams c;
-  readParamsYaml(y, control::ControlLoopParams::table(), c, file);
-  if (c.vehicle == "usv") readParamsYaml(y, control::UsvControlParams::table(), c.usv, file);
-  else if (c.vehicle == "girona500") readParamsYaml(y, control::Girona500ControlParams::table(), c.girona500, file);
-  else readParamsYaml(y, control::AcolorControlParams::table(), c.acolor, file);
+  for (const std::string& file : files) {
+    const YAML::Node y = loadYaml(file);
+    readParamsYaml(y, control::ControlLoopParams::table(), c, file);
+    if (c.vehicle == "usv") readParamsYaml(y, control::UsvControlParams::table(), c.usv, file);
+    else if (c.vehicle == "girona500") readParamsYaml(y, control::Girona500ControlParams::table(), c.girona500, file);
+    else readParamsYaml(y, control::AcolorControlParams::table(), c.acolor, file);
+  }
   return c;
 }
 
@@ -88,7 +91,7 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
   readParamsYaml(l, perception::SensorFrameParams::table(), f, lidar);
   c.pose_timeout = f.tf_timeout;
   c.guidance = readGuidance(dir + "/guidance/usv.yaml");
-  c.control = readControl(dir + "/control/usv.yaml");
+  c.control = readControl({dir + "/control/usv.yaml"});
   const std::string mission = dir + "/mission/usv.yaml";
   readParamsYaml(loadYaml(mission), mission::UsvMissionParams::table(), c.mission, mission);
   const std::string safety_file = dir + "/safety/usv.yaml";  // as the mission nodelet reads the region
@@ -208,7 +211,8 @@ AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, co
   readParamsYaml(s, perception::SensorFrameParams::table(), f, sonar);
   c.pose_timeout = f.tf_timeout;
   c.guidance = readGuidance(dir + "/guidance/" + model + ".yaml");
-  c.control = readControl(dir + "/control/" + model + ".yaml");
+  // as guidance_auv.launch with sim:=true: the simulated vehicle's own tuning over the vehicle's
+  c.control = readControl({dir + "/control/" + model + ".yaml", dir + "/control/" + model + "_sim.yaml"});
   const std::string mission = dir + "/mission/auv.yaml";
   const YAML::Node m = loadYaml(mission);
   c.mission.coverage = mission::CoverageArea();

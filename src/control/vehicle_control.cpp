@@ -148,12 +148,36 @@ void UsvController::keepYawAuthority(JoystickOut& out) const {
   out.sway *= lo;
 }
 
+double acolorSurgeCommand(const models::AuvModel& model, double speed) {
+  const models::AuvParams& p = model.params();
+  if (!std::isfinite(speed) || speed <= 0.0) return 0.0;
+  const double drag = std::abs(p.X_u) * speed + std::abs(p.X_uu) * speed * speed;
+  const Eigen::RowVectorXd row = model.tcm().row(0);
+  const double share = row.cwiseAbs().maxCoeff();
+  auto thrust = [&](double command) {
+    double f = 0.0;
+    for (int i = 0; i < model.thrusters(); ++i) f += row(i) * model.thrust(i, command * row(i) / share);
+    return f;
+  };
+  if (thrust(1.0) <= drag) return 1.0;
+  double lo = 0.0, hi = 1.0;  // the thrust does not fall with the command (monotonic curves): bisection
+  for (int k = 0; k < 40; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (thrust(mid) < drag ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+AcolorControlParams::AcolorControlParams() {
+  auto model = std::make_shared<const models::AuvModel>(models::AuvParams::aColor());
+  surge_command_for = [model](double speed) { return acolorSurgeCommand(*model, speed); };
+}
+
 const ParamTable<AcolorControlParams>& AcolorControlParams::table() {
   using P = AcolorControlParams;
   static const ParamTable<P> t = ParamTable<P>()
       .nest("yaw/", &P::yaw, PidGains::table())
       .nest("heave/", &P::heave, PidGains::table())
-      .number("surge_pwm", &P::surge_pwm, 1100.0, 1900.0, "us", "constant surge PWM while following a path")
       .integer("rc/num_channels", &P::num_channels, 1, 18, "RC channels sent to the flight controller")
       .integer("rc/heave", &P::channel_heave, 1, 18, "1-based channel of heave (throttle)")
       .integer("rc/yaw", &P::channel_yaw, 1, 18, "1-based channel of yaw")
@@ -200,7 +224,7 @@ std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const
   ch[p_.channel_heave - 1] = pwm(heave_us / 400.0);
   // Constant surge while following; the aColor cannot hold station horizontally, it stops and holds depth.
   ch[p_.channel_surge - 1] =
-      r.mode == ReferenceMode::kFollow ? static_cast<std::uint16_t>(std::lround(p_.surge_pwm)) : 1500;
+      r.mode == ReferenceMode::kFollow && p_.surge_command_for ? pwm(p_.surge_command_for(r.surge)) : 1500;
   return ch;
 }
 

@@ -23,6 +23,8 @@ const ParamTable<LosParams>& LosParams::table() {
             "the crab angle from the velocity over ground, atan2(v, u), instead of estimated (GPS velocity)")
       .number("crab_tf", &P::crab_tf, 0.01, 100.0, "s", "low-pass time constant of the measured crab angle")
       .number("crab_min_speed", &P::crab_min_speed, 0.0, 10.0, "m/s", "below this speed the crab angle is kept")
+      .flag("crab_ned", &P::crab_ned,
+            "keep the crab estimate as a NED vector (current over speed), so legs of other directions get their own")
       .number("acceptance_radius", &P::acceptance_radius, 0.01, 1000.0, "m",
               "circle (USV, 2 L_USV) or sphere (AUV) of acceptance")
       .flag("sphere", &P::sphere, "3-D sphere of acceptance (AUV) instead of the 2-D circle")
@@ -256,8 +258,16 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
   } else if (p_.adaptive_crab) {
     // Fossen's ALOS: the update scales with the speed U, as the cross-track rate does; without it the
     // estimate outran the look-ahead at low speed (the mission's transit lies in the slowdown: ringing at ~40 s).
-    beta_hat_ += dt * p_.crab_gain * speed * delta / std::sqrt(delta * delta + e * e) * e;
-    beta_hat_ = std::clamp(beta_hat_, -p_.crab_limit, p_.crab_limit);
+    const double step = dt * p_.crab_gain * speed * delta / std::sqrt(delta * delta + e * e) * e;
+    if (p_.crab_ned) {
+      // the same update along the leg's starboard normal; the component along the leg is not observable on it
+      const Eigen::Vector2d n(-std::sin(chi_p), std::cos(chi_p));
+      crab_ned_ += step * n;
+      if (crab_ned_.norm() > p_.crab_limit) crab_ned_ *= p_.crab_limit / crab_ned_.norm();
+      beta_hat_ = crab_ned_.dot(n);
+    } else {
+      beta_hat_ = std::clamp(beta_hat_ + step, -p_.crab_limit, p_.crab_limit);
+    }
   }
   const double chi_r = std::atan(-p_.kp * e - p_.ki * integral_);  // eq. 4.10
   o.mode = Mode::kFollowPath;

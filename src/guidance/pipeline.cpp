@@ -45,12 +45,17 @@ GuidanceParams GuidanceParams::preset(const std::string& vehicle) {
     p.sbb_enabled = false;
   } else if (vehicle == "acolor") {
     // Table 4.2 LOS row; R = 3 L_AUV (Publication IV: its positions come from the USBL only), with L_AUV =
-    // 0.46 m for the BlueROV2 Heavy-class frame the model assumes (config/models/acolor.yaml).
+    // 0.46 m for the BlueROV2 Heavy-class frame the model assumes (config/models/acolor.yaml). The thesis gives
+    // no speed (a constant PWM): 0.5 m/s, at which the sonar sees the target on 2-3 sweeps per pass (at 0.7 m/s
+    // on 1-2, and the confirmation needs two). Unlike the holonomic Girona500 it steers against the current
+    // with its heading: the crab estimate, kept in NED so the lawnmower's return legs start with their own.
     p.los.kp = 0.333;
     p.los.ki = 0.0;
     p.los.sphere = true;
     p.los.acceptance_radius = 1.4;
-    p.los.surge_speed = 0.3;
+    p.los.surge_speed = 0.5;
+    p.los.crab_ned = true;
+    p.los.crab_gain = 0.1;  // per m/s: 0.05 at its 0.5 m/s
     p.sbb_enabled = false;
   } else {
     throw ConfigError("parameter 'vehicle' = '" + vehicle + "' is not one of: usv, girona500, acolor");

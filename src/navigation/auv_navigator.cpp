@@ -1,5 +1,10 @@
-// AUV navigation: Kalman filter on [position; velocity] in NED with delayed USBL fixes applied at their stamp by
-// rolling back over a short history of inputs and filter states and replaying the later inputs.
+// AUV navigation: Kalman filter on [position; velocity; current] in NED with delayed USBL fixes applied at their
+// stamp by rolling back over a short history of inputs and filter states and replaying the later inputs.
+//
+// The current: the commanded surge is a speed through the water, the DVL and the fixes see the motion over
+// ground. With a DVL the current has no measurement and stays apart (no cross-covariance ever forms), so the
+// Girona500's estimate is the same as without it; on commands it is what the fixes correct the model with
+// (a 0.2 m/s cross current otherwise biased the aColor's velocity towards the water-relative one).
 //
 // Yaw is not a filter state: the AHRS yaw is far better than anything the USBL fixes could tell about it, and
 // keeping it out keeps the filter linear (no EKF linearisation), so a replay reproduces the on-time filter
@@ -44,6 +49,9 @@ const ParamTable<AuvNavigatorConfig>& AuvNavigatorConfig::table() {
       .number("depth_sigma", &P::depth_sigma, 1e-4, 10.0, "m", "depth sensor noise")
       .number("cmd_sigma", &P::cmd_sigma, 1e-3, 10.0, "m/s",
               "error of the velocity from the commanded surge (no DVL), each horizontal axis, per command")
+      .number("current_sigma", &P::current_sigma, 1e-3, 10.0, "m/s",
+              "water current (estimated with the commanded-speed model): standard deviation, first-order Markov")
+      .number("current_tau", &P::current_tau, 1.0, 1e6, "s", "water current: correlation time")
       .number("init_velocity_sigma", &P::init_velocity_sigma, 1e-3, 100.0, "m/s",
               "velocity uncertainty when the first fix initialises the filter");
   return t;
@@ -160,7 +168,7 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
     case Kind::kDepth: {
       propagate(f, in.t);
       if (!f.initialised) return true;  // the first fix sets z, the next depth sample corrects it
-      Eigen::Matrix<double, 1, 6> H = Eigen::Matrix<double, 1, 6>::Zero();
+      Eigen::Matrix<double, 1, kNavStates> H = Eigen::Matrix<double, 1, kNavStates>::Zero();
       H(0, 2) = 1.0;
       update<1>(f, H, Eigen::Matrix<double, 1, 1>(in.a - f.x(2)),
                 Eigen::Matrix<double, 1, 1>(cfg_.depth_sigma * cfg_.depth_sigma));
@@ -174,24 +182,27 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
       if (!f.initialised) return true;
       // body FRD -> NED by yaw only: the AUV keeps roll and pitch near zero
       const Eigen::Vector3d v = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * in.v;
-      Eigen::Matrix<double, 3, 6> H = Eigen::Matrix<double, 3, 6>::Zero();
-      H.rightCols<3>().setIdentity();
-      update<3>(f, H, v - f.x.tail<3>(), Eigen::Matrix3d::Identity() * cfg_.dvl_sigma * cfg_.dvl_sigma);
+      Eigen::Matrix<double, 3, kNavStates> H = Eigen::Matrix<double, 3, kNavStates>::Zero();
+      H.middleCols<3>(3).setIdentity();
+      update<3>(f, H, v - f.x.segment<3>(3), Eigen::Matrix3d::Identity() * cfg_.dvl_sigma * cfg_.dvl_sigma);
       return true;
     }
     case Kind::kCommand: {
-      // The aColor's motion model from its commands: the horizontal velocity is surge * [cos yaw, sin yaw]. It
-      // enters as a velocity pseudo-measurement with a large error (cmd_sigma) rather than replacing the
-      // constant-velocity prediction, so the fixes can still correct the velocity (current, speed error).
+      // The aColor's motion model from its commands: the horizontal velocity through the water (over ground
+      // minus the current) is surge * [cos yaw, sin yaw]. It enters as a velocity pseudo-measurement with an
+      // error (cmd_sigma) rather than replacing the constant-velocity prediction, so the fixes can still correct
+      // the velocity (speed error) and reveal the current.
       if (in.t - f.dvl_t <= cfg_.dvl_timeout) return true;  // the DVL measures what the commands only suggest
       double yaw;
       if (!headingAt(f, in.t, yaw)) return refuse(first, "velocity_without_heading");
       propagate(f, in.t);
       if (!f.initialised) return true;
-      Eigen::Matrix<double, 2, 6> H = Eigen::Matrix<double, 2, 6>::Zero();
+      Eigen::Matrix<double, 2, kNavStates> H = Eigen::Matrix<double, 2, kNavStates>::Zero();
       H(0, 3) = H(1, 4) = 1.0;
+      H(0, 6) = H(1, 7) = -1.0;
       const Eigen::Vector2d v(in.a * std::cos(yaw), in.a * std::sin(yaw));
-      update<2>(f, H, v - f.x.segment<2>(3), Eigen::Matrix2d::Identity() * cfg_.cmd_sigma * cfg_.cmd_sigma);
+      update<2>(f, H, v - (f.x.segment<2>(3) - f.x.tail<2>()),
+                Eigen::Matrix2d::Identity() * cfg_.cmd_sigma * cfg_.cmd_sigma);
       return true;
     }
   }
@@ -206,7 +217,7 @@ bool AuvNavigator::applyFix(Filter& f, const Input& in, bool first) {
     const Eigen::Matrix3d S = f.P.topLeftCorner<3, 3>() + in.cov;
     const double d2 = y.dot(S.ldlt().solve(y));
     if (d2 <= cfg_.gate_chi2) {
-      Eigen::Matrix<double, 3, 6> H = Eigen::Matrix<double, 3, 6>::Zero();
+      Eigen::Matrix<double, 3, kNavStates> H = Eigen::Matrix<double, 3, kNavStates>::Zero();
       H.leftCols<3>().setIdentity();
       update<3>(f, H, y, in.cov);
       f.rejects_in_row = 0;
@@ -225,16 +236,21 @@ bool AuvNavigator::applyFix(Filter& f, const Input& in, bool first) {
     count(first, "reinit");
   }
   // The DVL's velocity is independent of a position jump: keep it when the DVL is measuring, else start at rest.
+  // The current is too: a re-initialisation keeps it, the first fix starts it at zero with its prior spread.
   const bool keep_velocity = reinit && in.t - f.dvl_t <= cfg_.dvl_timeout;
-  const Eigen::Matrix3d Pvv = f.P.bottomRightCorner<3, 3>();
+  const Eigen::Matrix3d Pvv = f.P.block<3, 3>(3, 3);
+  const Eigen::Matrix2d Pcc = reinit ? f.P.bottomRightCorner<2, 2>().eval()
+                                     : Eigen::Matrix2d::Identity() * cfg_.current_sigma * cfg_.current_sigma;
+  if (!reinit) f.x.tail<2>().setZero();
   f.P.setZero();
   f.P.topLeftCorner<3, 3>() = in.cov;
+  f.P.bottomRightCorner<2, 2>() = Pcc;
   f.x.head<3>() = in.v;
   if (keep_velocity) {
-    f.P.bottomRightCorner<3, 3>() = Pvv;
+    f.P.block<3, 3>(3, 3) = Pvv;
   } else {
-    f.x.tail<3>().setZero();
-    f.P.bottomRightCorner<3, 3>() = Eigen::Matrix3d::Identity() * cfg_.init_velocity_sigma * cfg_.init_velocity_sigma;
+    f.x.segment<3>(3).setZero();
+    f.P.block<3, 3>(3, 3) = Eigen::Matrix3d::Identity() * cfg_.init_velocity_sigma * cfg_.init_velocity_sigma;
   }
   f.initialised = true;
   f.rejects_in_row = 0;
@@ -243,17 +259,19 @@ bool AuvNavigator::applyFix(Filter& f, const Input& in, bool first) {
   return true;
 }
 
-// Constant velocity with white acceleration (exact discretisation, so splitting an interval changes nothing)
-// plus a horizontal position random walk.
+// Constant velocity with white acceleration plus a horizontal position random walk; the current first-order
+// Markov. Exact discretisations: splitting an interval changes nothing.
 void AuvNavigator::propagate(Filter& f, double t) const {
   const double dt = t - f.t;
   if (!(dt > 0.0)) return;
   f.t = t;
   if (!f.initialised) return;
-  Matrix6d F = Matrix6d::Identity();
-  F.topRightCorner<3, 3>() = Eigen::Matrix3d::Identity() * dt;
+  NavMatrix F = NavMatrix::Identity();
+  F.block<3, 3>(0, 3) = Eigen::Matrix3d::Identity() * dt;
+  const double decay = std::exp(-dt / cfg_.current_tau);
+  F.bottomRightCorner<2, 2>() *= decay;
   f.x = F * f.x;
-  Matrix6d Q = Matrix6d::Zero();
+  NavMatrix Q = NavMatrix::Zero();
   const double q[3] = {cfg_.accel_psd_h, cfg_.accel_psd_h, cfg_.accel_psd_v};
   for (int i = 0; i < 3; ++i) {
     Q(i, i) = q[i] * dt * dt * dt / 3.0;
@@ -262,17 +280,19 @@ void AuvNavigator::propagate(Filter& f, double t) const {
   }
   Q(0, 0) += cfg_.position_psd * dt;
   Q(1, 1) += cfg_.position_psd * dt;
+  const double var_c = cfg_.current_sigma * cfg_.current_sigma;
+  Q.bottomRightCorner<2, 2>() = Eigen::Matrix2d::Identity() * var_c * (1.0 - decay * decay);
   f.P = F * f.P * F.transpose() + Q;
 }
 
 // Joseph form: keeps P symmetric positive definite whatever the rounding.
 template <int M>
-void AuvNavigator::update(Filter& f, const Eigen::Matrix<double, M, 6>& H,
+void AuvNavigator::update(Filter& f, const Eigen::Matrix<double, M, kNavStates>& H,
                           const Eigen::Matrix<double, M, 1>& innovation, const Eigen::Matrix<double, M, M>& R) const {
   const Eigen::Matrix<double, M, M> S = H * f.P * H.transpose() + R;
-  const Eigen::Matrix<double, 6, M> K = S.ldlt().solve(H * f.P).transpose();  // P H' S^-1, S and P symmetric
+  const Eigen::Matrix<double, kNavStates, M> K = f.P * H.transpose() * S.inverse();  // S: at most 3 x 3, SPD
   f.x += K * innovation;
-  const Matrix6d IKH = Matrix6d::Identity() - K * H;
+  const NavMatrix IKH = NavMatrix::Identity() - K * H;
   f.P = IKH * f.P * IKH.transpose() + K * R * K.transpose();
   f.P = 0.5 * (f.P + f.P.transpose()).eval();
 }
@@ -289,8 +309,10 @@ AuvNavEstimate AuvNavigator::estimate(double t) const {
   AuvNavEstimate e;
   e.t = t;
   e.position = f.x.head<3>();
-  e.velocity = f.x.tail<3>();
-  e.covariance = f.P;
+  e.velocity = f.x.segment<3>(3);
+  e.covariance = f.P.topLeftCorner<6, 6>();
+  e.current = f.x.tail<2>();
+  e.current_covariance = f.P.bottomRightCorner<2, 2>();
   e.yaw_rate = f.yaw_rate;
   if (!headingAt(f, t, e.yaw)) e.yaw = f.yaw;
   if (!f.initialised)

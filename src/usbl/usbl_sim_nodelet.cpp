@@ -42,6 +42,11 @@ class UsblSimNodelet : public nodelet::Nodelet {
       cfg.local_id = static_cast<std::uint8_t>(p.integer("local_beacon_id", 1, 1, 15));
       cfg.remote_id = static_cast<std::uint8_t>(p.integer("remote_beacon_id", 2, 1, 15));
       cfg.mount = usbl_ros::readMounting(p);
+      // The mounting is relative to the point /usv_gps reports (what the USBL node places fixes with), the
+      // poses here are the hull's reference point: the transceiver is the GPS antenna's lever arm further.
+      // Without it every simulated fix came out 2.5 m too shallow and the 3 m depth gate refused about 20 %.
+      const auto antenna = p.numbers("gps_antenna", {0.0, 0.0, -2.5}, 3, -50, 50);
+      cfg.mount.offset += Eigen::Vector3d(antenna[0], antenna[1], antenna[2]);
       cfg.sound_speed = p.number("sound_speed", 1500.0, 1300, 1700);
       cfg.range_sigma = p.number("range_sigma", 0.05, 0, 100);
       cfg.angle_sigma = deg2rad(p.number("angle_sigma_deg", 0.5, 0, 45));
@@ -64,8 +69,10 @@ class UsblSimNodelet : public nodelet::Nodelet {
       NODELET_FATAL("%s", e.what());
       throw;
     }
-    usv_sub_ = nh.subscribe("/usv/ground_truth/odom", 20, &UsblSimNodelet::onUsv, this);
-    auv_sub_ = nh.subscribe("/auv/ground_truth/odom", 20, &UsblSimNodelet::onAuv, this);
+    usv_sub_ = nh.subscribe<nav_msgs::Odometry>("/usv/ground_truth/odom", 20,
+                                                [this](const nav_msgs::OdometryConstPtr& o) { onTruth(usv_, *o); });
+    auv_sub_ = nh.subscribe<nav_msgs::Odometry>("/auv/ground_truth/odom", 20,
+                                                [this](const nav_msgs::OdometryConstPtr& o) { onTruth(auv_, *o); });
     // What the AUV's beacon has queued for the next data request (the AUV side's DAT_QUEUE_SET).
     queue_sub_ = nh.subscribe("/auv/usbl/sim_remote_queue", 5, &UsblSimNodelet::onQueue, this);
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
@@ -82,42 +89,40 @@ class UsblSimNodelet : public nodelet::Nodelet {
     NODELET_INFO("SeaTrac simulator on %s (%s)", link_.c_str(), pty_->slaveName().c_str());
   }
 
-  static bool poseOf(const nav_msgs::Odometry& o, usbl::Pose& p) {
-    const auto& q = o.pose.pose.orientation;
-    const Eigen::Quaterniond e(q.w, q.x, q.y, q.z);
-    const Eigen::Vector3d enu(o.pose.pose.position.x, o.pose.pose.position.y, o.pose.pose.position.z);
-    if (!enu.allFinite() || !std::isfinite(e.norm()) || e.norm() < 0.5) return false;
-    p.ned = geo::enuToNed(enu);
-    p.q = usbl::enuFluToNedFrd(e);
-    return true;
-  }
-  // The USV's truth reaches this master late (in the main job through its simulated acoustic channel, up to a
-  // second of simulated time with the two simulators in lockstep rounds): kept with its stamp and body rates and
-  // carried forward to the time it is used, so a turning USV's transceiver points where it really does.
-  void onUsv(const nav_msgs::Odometry& o) {
-    usbl::Pose p;
-    if (!poseOf(o, p)) return counters_.increment("bad_ground_truth");
-    const auto& v = o.twist.twist.linear;
-    const auto& w = o.twist.twist.angular;
-    const Eigen::Vector3d v_frd(v.x, -v.y, -v.z), w_frd(w.x, -w.y, -w.z);  // FLU -> FRD
+  // A vehicle's latest ground truth with its stamp and body rates, carried to the time it is used (backwards
+  // too: the two simulators run in lockstep rounds up to a second apart); at most kMaxPredict, older truth is
+  // not carried further. The USV's reaches this master late (in the main job through its simulated acoustic
+  // channel), so a turning USV's transceiver points where it really does; the AUV's arrives after the callback
+  // latency, tens of milliseconds of wall time at 20x: taken as the position at the reply, the fixes lagged the
+  // AUV by 0.5 s of simulated time (0.3 m at the aColor's speed).
+  struct Truth {
+    usbl::Pose pose;
+    Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();  // body FRD
+    double t = 0.0;
+    bool have = false;
+    bool set(const nav_msgs::Odometry& o) {  // false: not a usable pose
+      const auto& q = o.pose.pose.orientation;
+      const Eigen::Quaterniond e(q.w, q.x, q.y, q.z);
+      const Eigen::Vector3d enu(o.pose.pose.position.x, o.pose.pose.position.y, o.pose.pose.position.z);
+      if (!enu.allFinite() || !std::isfinite(e.norm()) || e.norm() < 0.5) return false;
+      pose.ned = geo::enuToNed(enu);
+      pose.q = usbl::enuFluToNedFrd(e);
+      const auto& lv = o.twist.twist.linear;
+      const auto& av = o.twist.twist.angular;
+      const Eigen::Vector3d v_frd(lv.x, -lv.y, -lv.z), w_frd(av.x, -av.y, -av.z);  // FLU -> FRD
+      if (v_frd.allFinite() && w_frd.allFinite()) v = v_frd, w = w_frd;
+      t = o.header.stamp.toSec();
+      have = true;
+      return true;
+    }
+    usbl::Pose at(double when) const {
+      constexpr double kMaxPredict = 2.0;  // [s]
+      return usbl::predictPose(pose, v, w, std::clamp(when - t, -kMaxPredict, kMaxPredict));
+    }
+  };
+  void onTruth(Truth& truth, const nav_msgs::Odometry& o) {
     std::lock_guard<std::mutex> lock(mutex_);
-    usv_ = p;
-    if (v_frd.allFinite() && w_frd.allFinite()) usv_v_ = v_frd, usv_w_ = w_frd;
-    usv_t_ = o.header.stamp.toSec();
-    have_usv_ = true;
-  }
-  // The USV at time t from its latest truth, backwards too (the AUV simulator may be behind the USV's); at most
-  // kMaxPredict: older truth is not carried further.
-  usbl::Pose usvAt(double t) const {
-    constexpr double kMaxPredict = 2.0;  // [s]
-    return usbl::predictPose(usv_, usv_v_, usv_w_, std::clamp(t - usv_t_, -kMaxPredict, kMaxPredict));
-  }
-  void onAuv(const nav_msgs::Odometry& o) {
-    usbl::Pose p;
-    if (!poseOf(o, p)) return counters_.increment("bad_ground_truth");
-    std::lock_guard<std::mutex> lock(mutex_);
-    auv_ = p.ned;
-    have_auv_ = true;
+    if (!truth.set(o)) counters_.increment("bad_ground_truth");
   }
 
   void onQueue(const std_msgs::UInt8MultiArray& m) {
@@ -143,7 +148,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
           std::lock_guard<std::mutex> lock(mutex_);
           // Without both poses the beacon is out of reach: the ping times out.
           const double now = ros::Time::now().toSec();
-          sim_->setCurrentRange(have_usv_ && have_auv_ ? usbl::transceiverRange(mount_, usvAt(now), auv_)
+          sim_->setCurrentRange(usv_.have && auv_.have ? usbl::transceiverRange(mount_, usv_.at(now), auv_.at(now).ned)
                                                        : std::numeric_limits<double>::infinity());
           write(sim_->handle(*e.message, now));
         }
@@ -151,7 +156,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
       std::lock_guard<std::mutex> lock(mutex_);
       const double now = ros::Time::now().toSec();
       faults_->update(now);
-      write(sim_->poll(now, usvAt(now), auv_));
+      write(sim_->poll(now, usv_.at(now), auv_.at(now).ned));
     }
   }
 
@@ -161,11 +166,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
   std::mutex mutex_;
   std::unique_ptr<usbl::BeaconSimulator> sim_;
   std::unique_ptr<ros_util::FaultInjector> faults_;
-  usbl::Pose usv_;
-  Eigen::Vector3d usv_v_ = Eigen::Vector3d::Zero(), usv_w_ = Eigen::Vector3d::Zero();  // body FRD
-  double usv_t_ = 0.0;
-  Eigen::Vector3d auv_ = Eigen::Vector3d::Zero();
-  bool have_usv_ = false, have_auv_ = false;
+  Truth usv_, auv_;
   usbl::StreamDecoder decoder_;
   Counters counters_;
   std::atomic<bool> running_{false};

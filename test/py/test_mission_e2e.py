@@ -19,6 +19,14 @@ MAX_HOLD_P95_M = 8.0  # the USV holding at the target (issue 15's goal: 1 m)
 MAX_HOLD_DRIFT_M = 25.0  # the USV holding position after the AUV is gone (docs/mission.md)
 MAX_NAV_RMSE_M = 1.0     # the AUV's USBL navigation against its truth, during its mission (issue 16)
 MAX_AUV_RMSE_M = 0.4     # the AUV's true cross-track from the first waypoint (thesis 0.23 m; measured 0.20 m)
+# The aColor on USBL fixes and its commands (issue 16 goals 1.0 / 1.0 / 1.5 m). Measured over 9 runs on
+# 2026-12-02: cross-track 0.44-1.04 m (its 5 m lawnmower connectors, entered R = 1.4 m off the line, give half
+# of it; above 0.9 m only when the first passes miss the target, the whole lawnmower is flown and the waiting USV
+# has drifted 100 m away: 2 of 9, one of them over the goal), navigation 0.58-0.72 m, target 0.44-1.15 m (8 runs
+# with every figure; docs/guidance-control.md).
+ACOLOR_MAX_AUV_RMSE_M = 1.2
+ACOLOR_MAX_NAV_RMSE_M = 0.9
+ACOLOR_MAX_TARGET_ERROR_M = 1.5
 
 
 def run(scenario, out, *extra):
@@ -54,6 +62,23 @@ def test_default_mission_succeeds(tmp_path):
     if os.environ.get("OFFSHORE_GNC_SAVE_SCREENSHOT"):
         import shutil
         shutil.copy(os.path.join(str(tmp_path / "default"), "rviz_usv.png"), os.environ["OFFSHORE_GNC_SAVE_SCREENSHOT"])
+
+
+def test_acolor_mission_succeeds_on_usbl(tmp_path):
+    """The aColor as its own vehicle: Table 4.2's LOS with R = 3 L_AUV, its yaw and heave PIDs, the constant surge
+    PWM for guidance's speed, navigation on USBL fixes and its commands (no DVL)."""
+    r, m = run("pyhajarvi.yaml", tmp_path / "acolor", "--auv-model", "acolor")
+    assert r.returncode == 0, r.stdout[-3000:]
+    assert m["success"] is True and m["auv_final_phase"] == "TARGET_FOUND", m
+    assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
+    assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < ACOLOR_MAX_NAV_RMSE_M, m
+    assert m["auv_xte_samples"] > 500 and m["auv_rmse_m"] is not None and m["auv_rmse_m"] < ACOLOR_MAX_AUV_RMSE_M, m
+    assert m["target_error_m"] is not None and m["target_error_m"] < ACOLOR_MAX_TARGET_ERROR_M, m
+    # the aColor's RC channels drove the simulator, not the Girona500's thruster set-points
+    import rosbag
+    with rosbag.Bag(os.path.join(str(tmp_path / "acolor"), "auv.bag")) as bag:
+        counts = {t: bag.get_message_count(t) for t in ("/auv/rc_channels", "/auv/thruster_setpoints")}
+    assert counts["/auv/rc_channels"] > 1000 and counts["/auv/thruster_setpoints"] == 0, counts
 
 
 def test_a_scenario_on_another_origin_is_refused_naming_both(tmp_path):

@@ -2,12 +2,14 @@
 // Vehicle controllers (thesis 4.2.3, Tables 4.1-4.3): guidance references in, actuator commands out. ROS-free.
 // - USV: surge and yaw PIDs on low-pass + notch filtered feedback -> normalised joystick command (the CAN gateway
 //   forwards it as the manual 3-axis joystick would); station keeping with position PIDs in the body frame.
-// - aColor AUV: yaw PID, heave P, constant surge -> RC channel PWM (1100-1900 us).
+// - aColor AUV: yaw PID, heave P, constant surge (from guidance's speed through the model) -> RC channel PWM
+//   (1100-1900 us).
 // - Girona500: north, east, down, yaw PIDs -> body wrench -> allocation T^+ tau with saturation.
 #include <Eigen/Core>
 
 #include <cstdint>
 #include <memory>
+#include <functional>
 #include <vector>
 
 #include "offshore_gnc/common/counters.h"
@@ -16,6 +18,7 @@
 #include "offshore_gnc/control/filters.h"
 #include "offshore_gnc/control/pid.h"
 #include "offshore_gnc/models/joystick_allocation.h"
+#include "offshore_gnc/models/auv.h"
 #include "offshore_gnc/models/reference.h"
 #include "offshore_gnc/models/state.h"
 
@@ -71,13 +74,23 @@ class UsvController {
 struct AcolorControlParams {
   PidGains yaw{0.580, 0.276, 0.812, 1.0, 0.3};  // Table 4.2, normalised yaw deflection
   PidGains heave{300.0, 0.0, 0.0, 400.0, 0.0};  // Table 4.2 heave P, output in PWM microseconds from neutral
-  double surge_pwm = 1650.0;                     // constant surge command [us]
   int channel_heave = 3, channel_yaw = 4, channel_surge = 5;  // 1-based RC channels
   int num_channels = 8;
   double dt = 0.1;
+  // Forward command (normalised, -1..1) for a surge speed through the water [m/s]: constant for guidance's
+  // constant speed (the thesis' constant surge PWM; the aColor has no speed sensor to close a loop on), so the
+  // speed the navigation assumes from the command is the one the PWM gives. Default: the aColor model's steady
+  // state (acolorSurgeCommand).
+  std::function<double(double)> surge_command_for;
+  AcolorControlParams();
   static const ParamTable<AcolorControlParams>& table();
   void validate() const;
 };
+
+// The forward command at which a flight controller's mixer (each thruster driven at the command times its share
+// of the surge row of the thruster configuration matrix, as ArduSub's and sim::mixToThrusters do) makes the
+// model's surge thrust equal its surge damping at `speed` through the water; 1 when even full thrust is short.
+double acolorSurgeCommand(const models::AuvModel& model, double speed);
 
 class AcolorController {
  public:

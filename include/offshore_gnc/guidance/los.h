@@ -32,6 +32,10 @@ struct LosParams {
   bool measured_crab = false;
   double crab_tf = 2.0;            // [s]
   double crab_min_speed = 0.3;     // [m/s]
+  // Keep the crab estimate as a NED vector b (about the current over the speed through the water), the crab on a
+  // leg being b . n with n the leg's starboard normal: what one leg learnt then gives a leg of another direction
+  // its own crab (a lawnmower's legs alternate: the path-frame estimate started each leg with the wrong sign).
+  bool crab_ned = false;
   double acceptance_radius = 16.0; // R: circle (USV, 2 L_USV) or sphere (AUV) of acceptance [m]
   bool sphere = false;             // 3-D sphere of acceptance (AUV) instead of the 2-D circle
   double surge_speed = 1.5;        // cruise surge reference [m/s]
@@ -100,6 +104,7 @@ class LosGuidance {
   std::size_t leg_ = 1;
   double integral_ = 0.0;
   double beta_hat_ = 0.0;
+  Eigen::Vector2d crab_ned_ = Eigen::Vector2d::Zero();  // b of crab_ned
   bool finished_ = false;
   bool have_pose_ = false;
   std::string path_error_;

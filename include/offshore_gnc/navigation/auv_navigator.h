@@ -1,10 +1,12 @@
 #pragma once
-// AUV state estimation: a linear Kalman filter in local NED (x north, y east, z down) on position and NED
-// velocity, constant-velocity model. The absolute position comes from SeaTrac USBL fixes computed on the USV
-// (placed by its GPS and heading) and relayed to the AUV, so they arrive 0.5-2 s after they were taken: the filter
-// keeps the last history_s seconds of inputs with the state after each, rolls back to the fix's stamp, applies it
-// and replays what came later. Velocity from the DVL (Girona500) or, without one (aColor), from the commanded
-// surge; depth from the pressure sensor; yaw from the AHRS, taken as known. ROS-free; a nodelet wraps it.
+// AUV state estimation: a linear Kalman filter in local NED (x north, y east, z down) on position, NED velocity
+// over ground and the horizontal water current, constant-velocity model. The absolute position comes from SeaTrac
+// USBL fixes computed on the USV (placed by its GPS and heading) and relayed to the AUV, so they arrive 0.5-2 s
+// after they were taken: the filter keeps the last history_s seconds of inputs with the state after each, rolls
+// back to the fix's stamp, applies it and replays what came later. Velocity from the DVL (Girona500) or, without
+// one (aColor), from the commanded surge, which gives the velocity through the water: the current (a slowly
+// varying state the fixes reveal) makes it the velocity over ground. Depth from the pressure sensor; yaw from the
+// AHRS, taken as known. ROS-free; a nodelet wraps it.
 #include <Eigen/Dense>
 
 #include <deque>
@@ -28,6 +30,8 @@ struct AuvNavigatorConfig {
   double dvl_sigma = 0.03;            // DVL velocity noise, each axis [m/s]
   double depth_sigma = 0.05;          // depth sensor noise [m]
   double cmd_sigma = 0.3;             // commanded-speed model error, each horizontal axis, per command [m/s]
+  double current_sigma = 0.3;         // the water current: its standard deviation (first-order Markov) [m/s]
+  double current_tau = 3600.0;        // and its correlation time [s]
   double init_velocity_sigma = 1.0;   // velocity uncertainty at (re-)initialisation [m/s]
   static const ParamTable<AuvNavigatorConfig>& table();
 };
@@ -41,6 +45,9 @@ enum class NavStatus {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
+constexpr int kNavStates = 8;  // position (3), velocity over ground (3), horizontal current (2)
+using NavVector = Eigen::Matrix<double, kNavStates, 1>;
+using NavMatrix = Eigen::Matrix<double, kNavStates, kNavStates>;
 
 struct AuvNavEstimate {
   double t = 0.0;
@@ -48,6 +55,8 @@ struct AuvNavEstimate {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // NED [m/s]
   double yaw = 0.0, yaw_rate = 0.0;                    // from the AHRS [rad], [rad/s]
   Matrix6d covariance = Matrix6d::Identity();          // of [position; velocity]
+  Eigen::Vector2d current = Eigen::Vector2d::Zero();   // water current, north and east [m/s]
+  Eigen::Matrix2d current_covariance = Eigen::Matrix2d::Identity();
   NavStatus status = NavStatus::kNoFix;
 };
 
@@ -76,8 +85,8 @@ class AuvNavigator {
   struct Filter {
     double t = -1e300;  // time of x and P
     bool initialised = false;
-    Vector6d x = Vector6d::Zero();
-    Matrix6d P = Matrix6d::Identity();
+    NavVector x = NavVector::Zero();
+    NavMatrix P = NavMatrix::Identity();
     double yaw = 0.0, yaw_rate = 0.0;
     double heading_t = -1e300, dvl_t = -1e300, fix_t = -1e300;
     int rejects_in_row = 0;
@@ -100,7 +109,7 @@ class AuvNavigator {
   bool applyFix(Filter& f, const Input& in, bool first);
   void propagate(Filter& f, double t) const;
   template <int M>
-  void update(Filter& f, const Eigen::Matrix<double, M, 6>& H, const Eigen::Matrix<double, M, 1>& innovation,
+  void update(Filter& f, const Eigen::Matrix<double, M, kNavStates>& H, const Eigen::Matrix<double, M, 1>& innovation,
               const Eigen::Matrix<double, M, M>& R) const;
   bool headingAt(const Filter& f, double t, double& yaw) const;
   void count(bool first, const char* name) {

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "offshore_gnc/closed_loop/mission.h"
+#include "offshore_gnc/control/vehicle_control.h"
 #include "offshore_gnc/common/validate.h"
 
 using namespace offshore_gnc;
@@ -26,6 +27,15 @@ TEST(StackConfig, ShippedFilesLoadWithTheVehiclesPresets) {
     EXPECT_DOUBLE_EQ(a.mission.coverage.north_max, 60.0);      // the scenario's auv/coverage
   }
   EXPECT_THROW(loadAuvStack("config", "nautilus"), ConfigError);
+  // as guidance_auv.launch with sim:=true: the aColor's simulation gains over Table 4.2, the Girona500's as is
+  const AuvStackConfig ac = loadAuvStack("config", "acolor");
+  EXPECT_DOUBLE_EQ(ac.control.acolor.yaw.kp, 0.2);              // config/control/acolor_sim.yaml
+  EXPECT_DOUBLE_EQ(ac.control.acolor.heave.kp, 300.0);          // Table 4.2, untouched
+  EXPECT_DOUBLE_EQ(control::AcolorControlParams().yaw.kd, 0.812);  // the reference (config/control/acolor.yaml)
+  EXPECT_DOUBLE_EQ(ac.guidance.los.acceptance_radius, 1.4);      // R = 3 L_AUV
+  EXPECT_DOUBLE_EQ(ac.guidance.los.kp, 0.333);                   // Table 4.2 LOS
+  EXPECT_TRUE(ac.guidance.los.crab_ned);
+  EXPECT_DOUBLE_EQ(loadAuvStack("config", "girona500").control.girona500.yaw.kp, 63.425);  // Table 4.3
 }
 
 TEST(StackConfig, ABadValueNamesTheFileAndTheKey) {
@@ -59,6 +69,19 @@ TEST(RosFreeMission, TheDefaultMissionSucceedsInOneProcess) {
   EXPECT_LT(r.usv_wait_drift_m, 8.0);
   EXPECT_LT(r.usv_hold_p95_m, 8.0);
   EXPECT_GE(r.sim_time_s, r.detection_time_s + cfg.hold_time);  // held at the target before success
+}
+
+TEST(RosFreeMission, TheAcolorFollowsItsLawnmowerAndFindsTheTarget) {
+  // On the simulator's INS-like estimate (the ROS mission's USBL navigation is test_mission_e2e.py's); measured
+  // 2026-12-02: cross-track from the first waypoint on the truth 0.52 m, target error 0.55 m. Before issue 16's
+  // aColor work its heading chattered and it ran 700 m north without turning.
+  const MissionConfig cfg = loadMission("config", "config/scenarios/pyhajarvi.yaml", "acolor");
+  const MissionResult r = runMission(cfg);
+  EXPECT_TRUE(r.success) << r.reason;
+  EXPECT_EQ(r.auv.final_phase, "TARGET_FOUND");
+  EXPECT_GT(r.auv.tracking_truth.samples, 500u);
+  EXPECT_LT(r.auv.tracking_truth.rmse, 0.8);
+  EXPECT_LT(r.target_error_m, 1.0);
 }
 
 TEST(RosFreeMission, NoTargetScenarioEndsWithoutOne) {

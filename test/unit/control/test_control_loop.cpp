@@ -74,7 +74,9 @@ TEST(ControlLoop, EachVehicleGetsItsOwnCommand) {
   a.onState(VehicleState(), 0.0);
   const ActuatorCommand rc = a.update(0.1);
   ASSERT_EQ(rc.rc.size(), 8u);
-  EXPECT_EQ(rc.rc[4], 1650);  // constant surge on channel 5 while following
+  // constant surge on channel 5 while following: guidance's 0.3 m/s through the aColor model
+  EXPECT_EQ(rc.rc[4], AcolorController::pwm(acolorSurgeCommand(models::AuvModel(models::AuvParams::aColor()), 0.3)));
+  EXPECT_GT(rc.rc[4], 1540);  // beyond the thrusters' dead band
   EXPECT_GT(rc.rc[2], 1500);  // heave down towards 3 m
   ControlLoopParams p = vehicle("acolor");
   EXPECT_THROW(a.setParams(vehicle("usv")), ConfigError);  // the vehicle cannot change at run time

@@ -86,7 +86,7 @@ TEST(Controllers, AcolorPwmChannels) {
   s.position.z() = 1.0;
   const auto ch = ac.update(s, follow(-0.5, 0.5, 2.0));
   ASSERT_EQ(ch.size(), 8u);
-  EXPECT_EQ(ch[4], 1650);  // constant surge on channel 5
+  EXPECT_EQ(ch[4], AcolorController::pwm(AcolorControlParams().surge_command_for(0.5)));  // surge on channel 5
   EXPECT_LT(ch[3], 1500);  // yaw to port on channel 4
   EXPECT_EQ(ch[2], 1800);  // heave P: 300 us/m x 1 m too shallow -> down
   for (auto c : ch) {
@@ -95,4 +95,28 @@ TEST(Controllers, AcolorPwmChannels) {
   }
   EXPECT_EQ(AcolorController::pwm(5.0), 1900);
   EXPECT_EQ(AcolorController::pwm(kNan), 1500);
+}
+
+TEST(Acolor, TheSurgeCommandHoldsGuidancesSpeedOnTheModel) {
+  // Each horizontal thruster at the command times its share of the surge row (the flight controller's mixer),
+  // 60 s from rest in still water: the model settles at the speed the command was computed for.
+  const models::AuvParams ap = models::AuvParams::aColor();
+  const AcolorControlParams p;
+  for (double speed : {0.3, 0.7, 1.2}) {
+    models::AuvModel m(ap);
+    const double c = p.surge_command_for(speed);
+    ASSERT_GT(c, 0.1) << speed;  // beyond the dead band
+    ASSERT_LT(c, 1.0) << speed;
+    VehicleState s;
+    s.position.z() = 3.0;
+    m.reset(s);
+    const Eigen::RowVectorXd row = m.tcm().row(0);
+    ASSERT_TRUE(m.setCommand(c * row.transpose() / row.cwiseAbs().maxCoeff()));
+    const models::Environment still;
+    for (int i = 0; i < 6000; ++i) m.step(0.01, still);
+    EXPECT_NEAR(m.state().velocity.x(), speed, 0.01 * speed) << speed;
+  }
+  EXPECT_EQ(p.surge_command_for(0.0), 0.0);
+  EXPECT_EQ(p.surge_command_for(kNan), 0.0);
+  EXPECT_EQ(p.surge_command_for(10.0), 1.0);  // beyond full thrust
 }

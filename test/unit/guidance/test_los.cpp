@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 
@@ -108,6 +109,69 @@ TEST(Los, MeasuredCrabAngleIsTheSideslipOverGroundOnEveryLeg) {
   s.velocity = V3(0.05, 0.1, 0.0);
   for (int i = 0; i < 100; ++i) o = g.update(s, 0.1);
   EXPECT_NEAR(o.crab_angle, std::atan2(0.2, 1.0), 1e-3);
+}
+
+namespace {
+// RMS cross-track error on each leg of a lawnmower (north, south, north, 40 m long, 5 m apart) flown by a
+// kinematic vehicle that turns at once to the desired heading, at 0.7 m/s through the water in a 0.2 m/s current
+// from the west: the crab needed is +-asin(0.2 / 0.7) = +-16.6 deg, of opposite signs on the two directions.
+std::vector<double> lawnmowerLegErrors(bool crab_ned) {
+  LosParams p = plain();
+  p.kp = 0.333;  // the aColor's look-ahead (Table 4.2)
+  p.adaptive_crab = true;
+  p.crab_gain = 0.1;  // the aColor's, per m/s of speed
+  p.crab_ned = crab_ned;
+  p.sphere = true;
+  p.acceptance_radius = 1.4;
+  LosGuidance g(p);
+  g.setPath(lawnmower({0, 0}, 0.0, 40.0, 10.0, 5.0, 0.0));
+  VehicleState s = at(0, 0);
+  const Eigen::Vector2d current(0.0, 0.2);
+  const double dt = 0.1, u = 0.7;
+  std::vector<double> sq(g.path().size(), 0.0), n(g.path().size(), 0.0);
+  for (int i = 0; i < 6000; ++i) {
+    const LosOutput o = g.update(s, dt);
+    if (o.mode != Mode::kFollowPath) break;
+    sq[o.active_leg] += o.cross_track_error * o.cross_track_error;
+    n[o.active_leg] += 1.0;
+    s.yaw = o.desired_heading;
+    const Eigen::Vector2d ground = u * Eigen::Vector2d(std::cos(s.yaw), std::sin(s.yaw)) + current;
+    s.position.head<2>() += dt * ground;
+    s.velocity.head<2>() = Eigen::Vector2d(std::cos(s.yaw) * ground.x() + std::sin(s.yaw) * ground.y(),
+                                           -std::sin(s.yaw) * ground.x() + std::cos(s.yaw) * ground.y());
+  }
+  for (std::size_t k = 0; k < sq.size(); ++k) sq[k] = n[k] > 0 ? std::sqrt(sq[k] / n[k]) : 0.0;
+  return sq;
+}
+}  // namespace
+
+TEST(Los, CrabInNedCarriesTheCurrentToLegsOfOtherDirections) {
+  // The path-frame estimate enters each return leg with the crab of the opposite sign; the NED one with the crab
+  // the current asks of that leg. Legs 1 and 5 north, 3 south, 2 and 4 (5 m, with the current) east.
+  const std::vector<double> path_frame = lawnmowerLegErrors(false), ned = lawnmowerLegErrors(true);
+  ASSERT_EQ(ned.size(), 6u);
+  for (std::size_t leg = 1; leg < ned.size(); ++leg)
+    std::printf("leg %zu: RMS cross-track %.3f m path frame, %.3f m NED\n", leg, path_frame[leg], ned[leg]);
+  for (std::size_t leg : {3u, 5u}) {  // the long legs after the first, each after two turns
+    EXPECT_LT(ned[leg], 0.35) << "leg " << leg;
+    EXPECT_GT(path_frame[leg], 2.0 * ned[leg]) << "leg " << leg;
+  }
+}
+
+TEST(Los, CrabInNedOnOneStraightLegIsThePathFrameEstimate) {
+  for (bool ned : {false, true}) {
+    LosParams p = plain();
+    p.adaptive_crab = true;
+    p.crab_ned = ned;
+    LosGuidance g(p);
+    g.setPath({V3(0, 0, 0), V3(700, 700, 0)});  // north-east: both NED components move
+    LosOutput o;
+    VehicleState s = at(10, 11.0);
+    s.velocity.x() = 1.0;  // the update scales with the speed
+    for (int i = 0; i < 100; ++i) o = g.update(s, 0.1);
+    EXPECT_NEAR(o.crab_angle, 100 * 0.1 * p.crab_gain * 10.0 / std::hypot(10.0, 1.0 / std::sqrt(2.0)) /
+                                  std::sqrt(2.0), 1e-9) << ned;
+  }
 }
 
 TEST(Los, CircleOfAcceptanceSwitches) {
