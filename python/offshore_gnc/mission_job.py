@@ -201,6 +201,12 @@ class AcousticChannel:
             self.sink.last.get("republished", "?"), self.sink.last.get("bad_lines", "?"), self.sink.vehicle)
 
 
+# What each vehicle's stack advertises once its nodelets are loaded: navigation, guidance, control, the mission.
+STACK_TOPICS = {"usv": ["/usv/odom", "/usv/guidance/status", "/usv/joystick_cmd", "/usv/mission/status"],
+                "auv": ["/auv/guidance/status", "/auv/mission/status"]}
+STACK_READY_S = 60.0
+
+
 class SharedClock:
     """Co-simulation time: both simulators run in lockstep to the same simulated times, granted in rounds of
     CHUNK seconds with at most two rounds outstanding, so neither gets more than 2 CHUNK ahead of the other.
@@ -357,6 +363,14 @@ def run(a):
                 config=configs["auv"], navigation=a.auv_navigation,
                 usbl_port=os.path.join(out, "logs", "seatrac"))),  # missions side by side: one line each
         }
+        # The simulators' clocks wait for the stacks: at --rate 20 a stack whose nodelets took a second of wall time
+        # to load was 20 s late, the USV drifting in the current meanwhile (its wait drift: 2.5 m of 2.5 m).
+        for v, topics in STACK_TOPICS.items():
+            missing = [t for t in topics if not ms[v].wait_for_topic(t, timeout=STACK_READY_S)]
+            if missing:
+                print("[mission] the %s stack has not advertised %s after %.0f s; starting anyway" % (
+                    v, ", ".join(missing), STACK_READY_S), flush=True)
+        clock_t0 = time.time()
         usbl = a.auv_navigation == "usbl"
         mons = {"usv": Monitor(ms["usv"], "usv", lockstep, echo=AcousticChannel.TOPICS if usbl else ()),
                 "auv": Monitor(ms["auv"], "auv", lockstep, publish=AcousticChannel.TOPICS if usbl else ())}
@@ -424,7 +438,7 @@ def run(a):
                     outcome["reason"] += ": the USV arrived but never came on station (within the mission's " \
                                          "station_radius of its station point)"
                 break
-            if time.time() - t0 > 30 and sim_t == 0.0:
+            if time.time() - clock_t0 > 30 and sim_t == 0.0:
                 outcome = {"success": False, "reason": "no simulated time after 30 s: simulators not running"}
                 break
         if shots:
