@@ -124,7 +124,8 @@ class Republisher:
             m = from_plain(msg_type, d["msg"])
             pub = self.pubs.get(topic)
             if pub is None or pub.type != msg_type:
-                pub = self.pubs[topic] = rospy.Publisher(topic, type(m), queue_size=20)
+                # latched: a subscriber that connects only once the publisher appears (the relay) still gets it
+                pub = self.pubs[topic] = rospy.Publisher(topic, type(m), queue_size=20, latch=True)
             pub.publish(m)
             self.published += 1
         except (KeyError, TypeError, ValueError, rospy.ROSException):

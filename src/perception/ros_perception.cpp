@@ -114,6 +114,9 @@ offshore_gnc::Target toTarget(const perception::TargetGeometry& sensor_frame, co
   t.centroid = toPoint(g.centroid);
   t.nearest = toPoint(g.nearest);
   t.length = g.length;
+  t.axis.x = g.axis.x();
+  t.axis.y = g.axis.y();
+  t.axis.z = g.axis.z();
   t.width = g.width;
   t.height = g.height;
   t.range = g.range;
