@@ -379,7 +379,7 @@ def run(a):
         geofence = [f for f in planned if f["name"] == "geofence"]
         mons = {"usv": Monitor(ms["usv"], "usv", lockstep, echo=AcousticChannel.TOPICS if usbl else ()),
                 "auv": Monitor(ms["auv"], "auv", lockstep, publish=(AcousticChannel.TOPICS if usbl else ()) +
-                               (("/target",) if geofence else ()))}
+                               (("/target:offshore_gnc/Target",) if geofence else ()))}
         channel = AcousticChannel(mons["usv"], mons["auv"]) if usbl else None
         clock = SharedClock(mons) if lockstep else None
         shots = Screenshots(ms["usv"], out) if a.screenshot else None

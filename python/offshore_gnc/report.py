@@ -149,7 +149,9 @@ def _drift_after(track, t0):
 
 
 NAV_RECOVERED_M = 1.5  # issue 16: the navigation error after a USBL outage is back under this
-HOLD_SPEED_MPS = 0.3   # a vehicle holding position: its true speed over ground is under this
+# a vehicle holding position: its true speed over ground is under this (the USV's dynamic positioning moves it
+# about its point at 0.35-0.5 m/s in the current)
+HOLD_SPEED_MPS = 0.5
 SURFACED_M = 0.5       # an AUV at the surface: its true depth is under this
 REFUSED = "refused a target"  # the USV mission's status once it refused a target (mission::UsvMission)
 
@@ -184,39 +186,43 @@ SAFE_STATE_WORDS = {"warn": "a warning only", "refuse": "the target refused, the
 
 def _sentence(r):
     """The fault entry in one sentence (summary.md)."""
-    head = "`%s` (%s) injected at %s s" % (r["name"], r["vehicle"].upper(), _fmt(r["injected_at_s"]))
+    def _s(v):
+        return "n/a" if v is None else "%.1f" % v
+    head = "`%s` (%s) injected at %s s" % (r["name"], r["vehicle"].upper(), _s(r["injected_at_s"]))
     if r["ended_at_s"] is not None:
-        head += ", ended at %s s" % _fmt(r["ended_at_s"])
+        head += ", ended at %s s" % _s(r["ended_at_s"])
     if r["injected_at_s"] is None:
         return head + ": never took effect in the run."
     if r["detected_at_s"] is None:
         what = "no rule answered it" if not r["rule"] else "%s never became active" % r["rule"]
         return head + ": %s%s." % (what, "; other rules: " + ", ".join(
             "%s -> %s" % (x["rule"], x["action"]) for x in r["responses"]) if r["responses"] else "")
-    out = head + ": %s -> %s after %.1f s (%s)" % (
+    out = head + ": %s -> %s after %.2f s (%s)" % (
         r["rule"] or "the USV mission", r["action"], r["detected_at_s"] - r["injected_at_s"], r["reason"])
     state = SAFE_STATE_WORDS.get(r["action"], r["action"])
-    out += "; %s from %s s" % (state, _fmt(r["safe_state_at_s"])) if r["safe_state_at_s"] is not None else \
+    out += "; %s from %s s" % (state, _s(r["safe_state_at_s"])) if r["safe_state_at_s"] is not None else \
         "; %s never reached in the run" % state
     if r["action"] == "refuse":
         out += "; nothing to recover"
     elif r["recovered_at_s"] is not None:
-        out += "; released at %s s" % _fmt(r["recovered_at_s"])
+        out += "; released at %s s" % _s(r["recovered_at_s"])
     else:
         out += "; not released in the run"
     return out + "."
 
 
-def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_status=(), safe=None, usv_status=()):
+def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_status=(), safe=None, usv_status=(),
+                  usv_targets=()):
     """One entry per planned fault (mission_job --fault) with the issue's keys: name, injected_at_s (when the
     simulator announced it on /<v>/sim/faults, or the job noted it), detected_at_s and action (when the fault's own
     rule, FaultKind::rule, became active and what it commands; for `geofence` when the USV mission refused the
     target, action "refuse"), safe_state_at_s (SafeStates), recovered_at_s (the rule's release), plus ended_at_s,
     every rule the supervisor activated on that vehicle from its start to 10 s after its end (rule, action, delay,
-    release, reason) and a one-sentence summary. For a USBL outage also the navigation: largest error and position
+    release, reason) and a one-sentence summary; for `geofence` also when its target reached the USV master
+    (arrived_at_s, the bag's time: the relay's latency). For a USBL outage also the navigation: largest error and position
     sigma while it lasted, the filter's statuses, and how long after it the error stayed under NAV_RECOVERED_M.
     events/transitions: {vehicle: [(t, msg)]}; nav_err, nav_sigma: [(t, m)]; nav_status: [(t, str)];
-    usv_status: [(t, MissionStatus)]."""
+    usv_status: [(t, MissionStatus)]; usv_targets: [(t, Target)] on the USV master."""
     safe = safe or SafeStates({}, {}, {})
     reports = []
     for f in planned:
@@ -246,7 +252,11 @@ def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_st
                                   "reason": m.reason})
         rule = f.get("rule") or None
         first = next((x for x in responses if x["rule"] == rule), None) if rule else None
+        arrived = None
         if f["name"] == "geofence" and on is not None:  # the USV mission's region check answers it
+            p = f.get("target_ned") or (float("nan"),) * 2
+            arrived = next((t for t, m in usv_targets if t >= on - 1e-6 and
+                            math.hypot(m.origin.x - p[0], m.origin.y - p[1]) < 1.0), None)
             refusal = next(((_stamp(t, m), m.detail) for t, m in usv_status
                             if _stamp(t, m) >= on - 1e-6 and REFUSED in m.detail), None)
             if refusal:
@@ -262,6 +272,8 @@ def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_st
              "reason": first["reason"] if first else None,
              "start_s": start, "end_s": f["end_s"],
              "ended_at_s": round(off, 2) if off is not None else None, "responses": responses}
+        if f["name"] == "geofence":
+            r["arrived_at_s"] = round(arrived, 2) if arrived is not None else None
         if f["name"] == "usbl" and on is not None:
             during = [e for t, e in nav_err if on <= t < end]
             sig = [e for t, e in nav_sigma if on <= t < end]
@@ -366,7 +378,8 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     faults = fault_reports(list(planned_faults), {"usv": u["/usv/sim/faults"], "auv": a["/auv/sim/faults"]},
                            {"usv": u["/usv/safety/transitions"], "auv": a["/auv/safety/transitions"]},
                            [(t, e) for t, e in nav_err if t <= auv_end_t], nav_sigma,
-                           [(t, m.data) for t, m in a["/auv/navigation/status"]], safe, u["/usv/mission/status"])
+                           [(t, m.data) for t, m in a["/auv/navigation/status"]], safe, u["/usv/mission/status"],
+                           u["/target"])
 
     targets_true = sc.get("targets", []) or []
     detected = None

@@ -74,5 +74,22 @@ Collision timeToCollision(const Eigen::Vector2d& position, const Eigen::Vector2d
   return c;
 }
 
+bool safeSideExists(const std::vector<SafetyBoxView>& boxes, const Eigen::Vector2d& position) {
+  for (const SafetyBoxView& b : boxes) {
+    if (!b.cuts_path) continue;
+    if (b.blocked) return false;
+    // inside the convex box: on the same side of all four edges (either winding)
+    int pos = 0, neg = 0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const Eigen::Vector2d e = b.corners[(i + 1) % 4] - b.corners[i], p = position - b.corners[i];
+      const double cross = e.x() * p.y() - e.y() * p.x();
+      pos += cross > 0.0;
+      neg += cross < 0.0;
+    }
+    if (pos == 4 || neg == 4) return false;
+  }
+  return true;
+}
+
 }  // namespace safety
 }  // namespace offshore_gnc

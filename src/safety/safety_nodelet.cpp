@@ -6,7 +6,7 @@
 //                   /relay/link_status (link, while up), /usv/joystick_cmd (command), /usv/manual_cmd (manual),
 //                   /usv/waterjet/answering (jet), /usv/can/bus_state (bus_off: off or down), and for the collision
 //                   rule the time to collision (safety::timeToCollision: /usv/obstacles on the course /usv/odom
-//                   gives) with the safe side from /usv/guidance/safety_boxes (none while a box is blocked)
+//                   gives) with the safe side from /usv/guidance/safety_boxes (safety::safeSideExists)
 //   vehicle: auv -> /auv/odom (navigation, position, depth), /auv/sonar/beam (sonar: valid beams),
 //                   /auv/usbl/fix (usbl: QUALITY_OK fixes), /auv/pressure (depth sensor), /relay/link_status (link),
 //                   /auv/thruster_setpoints and /auv/rc_channels (command: whichever the vehicle's control publishes)
@@ -193,20 +193,27 @@ class SafetySupervisorNodelet : public nodelet::Nodelet {
     }
     checkCollision(t);
   }
-  // The guidance's safety boxes after each replan: no safe side while one of them is blocked.
+  // The guidance's safety boxes after each replan (map_ned), for the safe side.
   void onBoxes(const SafetyBoxArray::ConstPtr& m) {
     double t;
     if (!stampOf(m->header, t)) return;
     std::lock_guard<std::mutex> l(mutex_);
-    blocked_ = std::any_of(m->boxes.begin(), m->boxes.end(),
-                           [](const SafetyBox& b) { return b.side == SafetyBox::SIDE_BLOCKED; });
+    boxes_.clear();
+    for (const auto& b : m->boxes) {
+      safety::SafetyBoxView v;
+      for (int i = 0; i < 4; ++i) v.corners[i] = {b.corners[i].x, b.corners[i].y};
+      v.cuts_path = b.cuts_path;
+      v.blocked = b.side == SafetyBox::SIDE_BLOCKED;
+      boxes_.push_back(v);
+    }
     checkCollision(t);
   }
   void checkCollision(double t) {  // under mutex_
     if (!have_course_) return;
     collision_ = safety::timeToCollision(position_, velocity_, obstacles_, sup_->config().collision_radius);
     if (collision_.skipped) counters_.increment("bad_obstacles", collision_.skipped);
-    sup_->timeToCollision(t, collision_.ttc, !blocked_);  // NaN (a bad course): refused and counted there
+    safe_side_ = safety::safeSideExists(boxes_, position_);
+    sup_->timeToCollision(t, collision_.ttc, safe_side_);  // NaN (a bad course): refused and counted there
   }
 
   // What the CAN gateway (the simulator, in simulation) reports of the bus and the jets.
@@ -324,7 +331,7 @@ class SafetySupervisorNodelet : public nodelet::Nodelet {
     s.add("active_rules", active);
     if (vehicle_ == "usv") {
       s.addf("time_to_collision_s", "%.1f", collision_.ttc);
-      s.add("safe_side", blocked_ ? "none (a safety box is blocked)" : "yes");
+      s.add("safe_side", safe_side_ ? "yes" : "none (a safety box on the path is blocked, or the USV is inside one)");
       ros_util::addCounters(s, counters_, {"bad_obstacles"});
     }
     const auto counts = sup_->counters().snapshot();  // both shown from the start, zero until they move
@@ -336,8 +343,9 @@ class SafetySupervisorNodelet : public nodelet::Nodelet {
   std::atomic<bool> link_up_{false};
   // the time to collision's inputs (USV)
   Eigen::Vector2d position_ = Eigen::Vector2d::Zero(), velocity_ = Eigen::Vector2d::Zero();
-  bool have_course_ = false, blocked_ = false;
+  bool have_course_ = false, safe_side_ = true;
   std::vector<safety::SeenObstacle> obstacles_;
+  std::vector<safety::SafetyBoxView> boxes_;
   safety::Collision collision_;
   Counters counters_;
   std::mutex mutex_;  // the core and the decision: callbacks and timers may run concurrently

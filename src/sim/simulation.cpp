@@ -64,7 +64,7 @@ UsvSimulation::UsvSimulation(const Scenario& sc, const Config& cfg)
       lidar_(cfg.lidar, sc.world, cfg.seed * 7919 + 2) {
   requireRange("dt", cfg.dt, 1e-4, 0.1);
   requireRange("jet_timeout", cfg.jet_timeout, 0.0, 10.0);
-  requireRange("collision/distance", cfg.collision.distance, 1.0, 1000.0);
+  requireRange("collision/time_ahead", cfg.collision.time_ahead, 0.1, 600.0);
   requireRange("collision/length", cfg.collision.length, 0.1, 10000.0);
   requireRange("collision/width", cfg.collision.width, 0.1, 1000.0);
   requireRange("collision/height", cfg.collision.height, 0.1, 100.0);
@@ -142,9 +142,9 @@ void UsvSimulation::updateFaults(double t) {
   if (window && !obstacle_ && window->start != obstacle_window_ && v.norm() >= cfg_.collision.min_speed) {
     const Eigen::Vector2d ahead = v.norm() > 1e-6 ? Eigen::Vector2d(v.normalized())  // the course, else the bow
                                                   : Eigen::Vector2d(std::cos(s.yaw), std::sin(s.yaw));
-    const Eigen::Vector2d lidar = s.position.head<2>() + to_ned * cfg_.lidar.mount.head<2>();
+    const double face = cfg_.usv.length / 2 + v.norm() * cfg_.collision.time_ahead;  // from the USV's position
     Vessel barge;
-    barge.centre = lidar + (cfg_.collision.distance + cfg_.collision.width / 2) * ahead;
+    barge.centre = s.position.head<2>() + (face + cfg_.collision.width / 2) * ahead;
     barge.yaw = std::atan2(ahead.y(), ahead.x()) + kPi / 2;  // its long axis across the course
     barge.length = cfg_.collision.length;
     barge.width = cfg_.collision.width;

@@ -35,8 +35,8 @@ inline const std::vector<FaultKind>& faultKinds() {
        "set-points and go neutral, the NMEA 2000 GPS-compass is silent)",
        "bus_off"},
       {"collision", "usv",
-       "a barge (150 m, broadside) appears 12 m ahead of the LiDAR the first time the USV is under way "
-       "(>= 1.3 m/s) in the fault's window, and is gone at its end",
+       "a barge broadside across the USV's course appears ahead the first time the USV is under way in the fault's "
+       "window (sim::CollisionFault: 150 m long, 6 s ahead of its bow at its speed, from 0.8 m/s), gone at its end",
        "collision"},
       {"nav", "auv", "the AUV's AHRS, DVL and INS-like estimate are silent: its navigation has no estimate",
        "navigation_timeout"},

@@ -5,8 +5,10 @@
 // centred on eq. 4.3's origin, thickened by half its `width` (a capsule); without an axis, a disc of its larger
 // extent (as the SBB planner takes it). The vehicle is a disc of `radius` about its position (half its length:
 // head on, the bow touches first). The LiDAR gives no velocities, so obstacles are taken as still. ROS-free; NED.
+// Whether a safe side exists comes from the SBB planner's safety boxes (safeSideExists).
 #include <Eigen/Core>
 
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -32,6 +34,16 @@ struct Collision {
 // (ttc 0) while the vehicle closes on it, and not at all while it moves away.
 Collision timeToCollision(const Eigen::Vector2d& position, const Eigen::Vector2d& velocity,
                           const std::vector<SeenObstacle>& obstacles, double radius);
+
+// One of the SBB planner's safety boxes (offshore_gnc/SafetyBox) as the supervisor takes it.
+struct SafetyBoxView {
+  std::array<Eigen::Vector2d, 4> corners;  // in order around the box (rear-port, front-port, front-starboard, ...)
+  bool cuts_path = false;                  // the box cuts the path's corridor: the planner goes round it
+  bool blocked = false;                    // it found no side within its navigable corridor
+};
+// A safe side exists unless a box that cuts the path has none, or the vehicle is already inside one: its detour
+// then starts behind it, with no room left to go round (a wide obstacle appearing close ahead).
+bool safeSideExists(const std::vector<SafetyBoxView>& boxes, const Eigen::Vector2d& position);
 
 }  // namespace safety
 }  // namespace offshore_gnc

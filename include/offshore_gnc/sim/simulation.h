@@ -35,14 +35,15 @@ Eigen::VectorXd mixToThrusters(const Eigen::MatrixXd& tcm, const AuvCommand& c);
 // Environment of a scenario: its current plus optional wind and waves.
 models::EnvironmentParams environmentOf(const Scenario& sc);
 
-// The obstacle of the `collision` fault: a barge broadside across the USV's course, appearing `distance` ahead of
-// its LiDAR the first time the USV moves at `min_speed` or more within the fault's window, gone at its end. Wider
-// than the LiDAR sees contiguously at that distance (its returns grow sparse towards the ends), so that the
-// guidance's safety box leaves no side within sbb/max_offset (docs/safety.md).
+// The obstacle of the `collision` fault: a barge broadside across the USV's course, appearing the first time the
+// USV moves at `min_speed` or more within the fault's window where its bow (half its length ahead) reaches it in
+// `time_ahead` at that speed, and gone at the window's end. Its face is wider than the LiDAR sees at that distance
+// (its returns grow sparse towards the ends: perception made it 70 m long from 10 m), and the safety box of that
+// extent reaches past the USV: no side is left to go round it.
 struct CollisionFault {
-  double distance = 12.0;   // LiDAR to the barge's near side [m]
+  double time_ahead = 6.0;  // [s] under the supervisor's allstop_ttc (8 s)
   double length = 150.0, width = 10.0, height = 3.0;  // [m]
-  double min_speed = 1.3;   // under way: speed over ground [m/s]
+  double min_speed = 0.8;   // under way: speed over ground [m/s]
 };
 
 // What the CAN gateway reports of the bus (on the vessel; simulated here, where there is no bus): the bus state

@@ -96,3 +96,21 @@ TEST(TimeToCollision, BadInputIsNaNOrSkippedNeverACrash) {
   EXPECT_EQ(c.obstacle, 2);  // the good one still counts
   EXPECT_NEAR(c.ttc, 18.0, 1e-9);
 }
+
+TEST(SafeSide, NoneWhenABoxOnThePathIsBlockedOrTheVehicleIsAlreadyInsideOne) {
+  SafetyBoxView box;  // 20 x 10 m about (30, 0), cutting the path
+  box.corners = {Eigen::Vector2d(20, -5), Eigen::Vector2d(40, -5), Eigen::Vector2d(40, 5), Eigen::Vector2d(20, 5)};
+  box.cuts_path = true;
+  EXPECT_TRUE(safeSideExists({}, kHere));
+  EXPECT_TRUE(safeSideExists({box}, kHere));                           // outside: the detour goes round it
+  EXPECT_FALSE(safeSideExists({box}, Eigen::Vector2d(25.0, 1.0)));      // inside: no room left
+  SafetyBoxView reversed = box;  // the other winding
+  std::swap(reversed.corners[1], reversed.corners[3]);
+  EXPECT_FALSE(safeSideExists({reversed}, Eigen::Vector2d(25.0, 1.0)));
+  SafetyBoxView aside = box;  // off the path: the planner ignores it, so does the check
+  aside.cuts_path = false;
+  EXPECT_TRUE(safeSideExists({aside}, Eigen::Vector2d(25.0, 1.0)));
+  SafetyBoxView blocked = box;
+  blocked.blocked = true;
+  EXPECT_FALSE(safeSideExists({aside, blocked}, kHere));
+}

@@ -489,8 +489,8 @@ TEST(Faults, AStoppedUnitOrABusOffStopsItsJetsAndIsReportedAsTheGatewayWould) {
   EXPECT_NEAR(usv.model().jet(0).bucket, usv.model().jet(1).bucket, 1e-9);
 }
 
-// The collision fault: nothing while the USV is still, then a barge broadside across its course, the configured
-// distance ahead of its LiDAR, the first time it is under way in the window; gone at the window's end.
+// The collision fault: nothing while the USV is still, then a barge broadside across its course, where its bow
+// reaches it in the configured time at its speed, the first time it is under way in the window; gone at the end.
 TEST(Faults, TheCollisionObstacleAppearsAheadOnceUnderWayAndGoesAtTheEnd) {
   const Scenario sc;  // open water, heading north
   UsvSimulation::Config cfg;
@@ -498,7 +498,6 @@ TEST(Faults, TheCollisionObstacleAppearsAheadOnceUnderWayAndGoesAtTheEnd) {
   cfg.faults = FaultPlan::parse("collision@2+40");
   UsvSimulation usv(sc, cfg);
   double appeared = NAN, gone = NAN;
-  Eigen::Vector2d lidar_at = Eigen::Vector2d::Zero();
   for (int i = 0; i < 5000 && std::isnan(gone); ++i) {
     if (i == 500) {
       ASSERT_TRUE(usv.setCommand({1.0, 0.0, 0.0}));  // still for 5 s, then full ahead
@@ -507,13 +506,13 @@ TEST(Faults, TheCollisionObstacleAppearsAheadOnceUnderWayAndGoesAtTheEnd) {
     const double t = usv.state().t;
     if (usv.faultObstacle() && std::isnan(appeared)) {
       appeared = t;
-      lidar_at = usv.state().position.head<2>() + Eigen::Vector2d(cfg.lidar.mount.x(), 0.0);  // heading ~north
       const double speed = usv.state().velocity.head<2>().norm();
       EXPECT_GE(speed, cfg.collision.min_speed);
       EXPECT_LT(speed, cfg.collision.min_speed + 0.05);  // at the first moment under way
       const Vessel& b = *usv.faultObstacle();
       EXPECT_NEAR(std::abs(std::sin(b.yaw - usv.state().yaw)), 1.0, 0.02);  // broadside across the course
-      EXPECT_NEAR((b.centre - lidar_at).norm(), cfg.collision.distance + b.width / 2, 0.5);
+      const double face = cfg.usv.length / 2 + speed * cfg.collision.time_ahead;  // 4 + 6 x 0.8 m
+      EXPECT_NEAR((b.centre - usv.state().position.head<2>()).norm(), face + b.width / 2, 1e-6);
     }
     if (!usv.faultObstacle() && !std::isnan(appeared)) gone = t;
   }
@@ -523,12 +522,12 @@ TEST(Faults, TheCollisionObstacleAppearsAheadOnceUnderWayAndGoesAtTheEnd) {
 
   // the LiDAR sees it ahead at that distance while it is there, and not before or after
   UsvSimulation::Config still = cfg;
-  still.collision.min_speed = 0.0;  // under way from the start: there at once
+  still.collision.min_speed = 0.0;  // "under way" from the start: there at once, at the bow
   UsvSimulation seen(sc, still);
   float ahead = NAN;
   for (int i = 0; i < 300 && std::isnan(ahead); ++i)
     if (seen.step().lidar && seen.state().t > 2.0) ahead = rangeAt(seen.scan(), 1, 0.0);  // level layer, dead ahead
-  EXPECT_NEAR(ahead, cfg.collision.distance, 0.05);
+  EXPECT_NEAR(ahead, cfg.usv.length / 2 - cfg.lidar.mount.x(), 0.05);
   UsvSimulation before(sc, still);
   float nothing = 0.0f;
   for (int i = 0; i < 150; ++i)
