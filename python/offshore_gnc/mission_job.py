@@ -36,6 +36,9 @@ from offshore_gnc.testing import MasterSet  # noqa: E402
 from offshore_gnc.testing.masters import free_port, kill_tree  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
+# The geofence fault's target (offshore_gnc::faultKinds(): 5 km north of the origin, NED [m]), outside the USV's
+# operating region (safety::usvDefaults(): a 2 km square about the origin)
+PHANTOM_TARGET_NED = (5000.0, 0.0, 5.0)
 
 
 def relay_configs(folder, speedup, dial_port=None):
@@ -304,6 +307,20 @@ class Screenshots:
         return best[1] if best else None
 
 
+def phantom_target(sim_t):
+    """The geofence fault: a /target line for the AUV's monitor to publish on the AUV master, stamped at sim_t,
+    as the AUV mission publishes a detection (map_ned, from the sonar) but outside the USV's operating region.
+    No geodetic position (NaN): the USV mission takes the local one."""
+    n, e, d = PHANTOM_TARGET_NED
+    secs = int(sim_t)
+    point = {"x": n, "y": e, "z": d}
+    return json.dumps({"echo": "/target", "type": "offshore_gnc/Target", "msg": {
+        "header": {"stamp": {"secs": secs, "nsecs": int(round((sim_t - secs) * 1e9)) % 1000000000},
+                   "frame_id": "map_ned"},
+        "source": 2, "origin": point, "centroid": point, "nearest": point, "confidence": 1.0,
+        "latitude": float("nan"), "longitude": float("nan"), "depth": d}})
+
+
 def fmt_progress(u, a):
     def one(s):
         d = s.get("distance_to_go")
@@ -372,8 +389,11 @@ def run(a):
                     v, ", ".join(missing), STACK_READY_S), flush=True)
         clock_t0 = time.time()
         usbl = a.auv_navigation == "usbl"
+        # the phantom target of a geofence fault goes out on the AUV master, where the relay picks it up
+        geofence = [f for f in planned if f["name"] == "geofence"]
         mons = {"usv": Monitor(ms["usv"], "usv", lockstep, echo=AcousticChannel.TOPICS if usbl else ()),
-                "auv": Monitor(ms["auv"], "auv", lockstep, publish=AcousticChannel.TOPICS if usbl else ())}
+                "auv": Monitor(ms["auv"], "auv", lockstep, publish=(AcousticChannel.TOPICS if usbl else ()) +
+                               (("/target:offshore_gnc/Target",) if geofence else ()))}
         channel = AcousticChannel(mons["usv"], mons["auv"]) if usbl else None
         clock = SharedClock(mons) if lockstep else None
         shots = Screenshots(ms["usv"], out) if a.screenshot else None
@@ -403,6 +423,11 @@ def run(a):
                         f["ended_s"] = round(sim_t, 2)
                         radio.up()
                         print("[mission] the radio link is up again at sim %.1f s" % sim_t, flush=True)
+            for f in geofence:  # once; a full pipe to the monitor: the next round
+                if f.get("injected_s") is None and sim_t >= f["start_s"] and mons["auv"].send(phantom_target(sim_t)):
+                    f["injected_s"], f["target_ned"] = round(sim_t, 2), list(PHANTOM_TARGET_NED)
+                    print("[mission] fault injection: a target %.0f m north of the origin published on the AUV's "
+                          "/target at sim %.1f s" % (PHANTOM_TARGET_NED[0], sim_t), flush=True)
             if a.kill and a.kill[0] not in died and sim_t >= a.kill[1]:
                 print("[mission] fault injection: killing the %s stack at sim %.1f s" % (a.kill[0], sim_t), flush=True)
                 kill_tree(launches[a.kill[0]].pid)

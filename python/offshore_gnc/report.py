@@ -149,19 +149,86 @@ def _drift_after(track, t0):
 
 
 NAV_RECOVERED_M = 1.5  # issue 16: the navigation error after a USBL outage is back under this
+# a vehicle holding position: its true speed over ground is under this (the USV's dynamic positioning moves it
+# about its point at 0.35-0.5 m/s in the current)
+HOLD_SPEED_MPS = 0.5
+SURFACED_M = 0.5       # an AUV at the surface: its true depth is under this
+REFUSED = "refused a target"  # the USV mission's status once it refused a target (mission::UsvMission)
 
 
-def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_status=()):
-    """One entry per planned fault (mission_job --fault): when the simulator announced it (/<v>/sim/faults), the
-    safety supervisor's activations on that vehicle from its start to 10 s after its end (rule, action, delay)
-    and when each released. For a USBL outage also the navigation: largest error and position sigma while it
-    lasted, the filter's statuses, and how long after it the error stayed under NAV_RECOVERED_M.
-    events/transitions: {vehicle: [(t, msg)]}; nav_err, nav_sigma: [(t, m)]; nav_status: [(t, str)]."""
+class SafeStates:
+    """When a vehicle was in an action's safe state after some time, from the bags: a warning (and a refused
+    target: the USV goes on with what it was doing) at once; neutral at its first neutral actuator command; hold
+    once its true speed over ground is under HOLD_SPEED_MPS; surface (and abort, which surfaces) once its true depth
+    is under SURFACED_M (the USV: neutral). neutral: {vehicle: [(t, bool)]}; speed, depth: {vehicle: [(t, value)]}."""
+
+    def __init__(self, neutral, speed, depth):
+        self.neutral, self.speed, self.depth = neutral, speed, depth
+
+    def reached(self, vehicle, action, t0):
+        if t0 is None:
+            return None
+        if action in ("warn", "refuse"):
+            return t0
+        if action in ("surface", "abort") and vehicle != "usv":
+            series, ok = self.depth.get(vehicle, []), lambda d: d < SURFACED_M
+        elif action == "hold":
+            series, ok = self.speed.get(vehicle, []), lambda v: v < HOLD_SPEED_MPS
+        else:
+            series, ok = self.neutral.get(vehicle, []), bool
+        return next((round(t, 2) for t, x in series if t >= t0 - 1e-6 and ok(x)), None)
+
+
+SAFE_STATE_WORDS = {"warn": "a warning only", "refuse": "the target refused, the USV going on with what it was doing",
+                    "neutral": "neutral actuators", "hold": "holding (under %.1f m/s)" % HOLD_SPEED_MPS,
+                    "surface": "at the surface (under %.1f m)" % SURFACED_M, "abort": "aborted at the surface"}
+
+
+def _sentence(r):
+    """The fault entry in one sentence (summary.md)."""
+    def _s(v):
+        return "n/a" if v is None else "%.1f" % v
+    head = "`%s` (%s) injected at %s s" % (r["name"], r["vehicle"].upper(), _s(r["injected_at_s"]))
+    if r["ended_at_s"] is not None:
+        head += ", ended at %s s" % _s(r["ended_at_s"])
+    if r["injected_at_s"] is None:
+        return head + ": never took effect in the run."
+    if r["detected_at_s"] is None:
+        what = "no rule answered it" if not r["rule"] else "%s never became active" % r["rule"]
+        return head + ": %s%s." % (what, "; other rules: " + ", ".join(
+            "%s -> %s" % (x["rule"], x["action"]) for x in r["responses"]) if r["responses"] else "")
+    out = head + ": %s -> %s after %.2f s (%s)" % (
+        r["rule"] or "the USV mission", r["action"], r["detected_at_s"] - r["injected_at_s"], r["reason"])
+    state = SAFE_STATE_WORDS.get(r["action"], r["action"])
+    out += "; %s from %s s" % (state, _s(r["safe_state_at_s"])) if r["safe_state_at_s"] is not None else \
+        "; %s never reached in the run" % state
+    if r["action"] == "refuse":
+        out += "; nothing to recover"
+    elif r["recovered_at_s"] is not None:
+        out += "; released at %s s" % _s(r["recovered_at_s"])
+    else:
+        out += "; not released in the run"
+    return out + "."
+
+
+def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_status=(), safe=None, usv_status=(),
+                  usv_targets=()):
+    """One entry per planned fault (mission_job --fault) with the issue's keys: name, injected_at_s (when the
+    simulator announced it on /<v>/sim/faults, or the job noted it), detected_at_s and action (when the fault's own
+    rule, FaultKind::rule, became active and what it commands; for `geofence` when the USV mission refused the
+    target, action "refuse"), safe_state_at_s (SafeStates), recovered_at_s (the rule's release), plus ended_at_s,
+    every rule the supervisor activated on that vehicle from its start to 10 s after its end (rule, action, delay,
+    release, reason) and a one-sentence summary; for `geofence` also when its target reached the USV master
+    (arrived_at_s, the bag's time: the relay's latency). For a USBL outage also the navigation: largest error and position
+    sigma while it lasted, the filter's statuses, and how long after it the error stayed under NAV_RECOVERED_M.
+    events/transitions: {vehicle: [(t, msg)]}; nav_err, nav_sigma: [(t, m)]; nav_status: [(t, str)];
+    usv_status: [(t, MissionStatus)]; usv_targets: [(t, Target)] on the USV master."""
+    safe = safe or SafeStates({}, {}, {})
     reports = []
     for f in planned:
         v, start = f["vehicle"], f["start_s"]
         end = f["end_s"] if f["end_s"] is not None else float("inf")
-        if v == "both":  # injected by the job itself (the radio), which noted when
+        if v == "both":  # injected by the job itself (the radio, the phantom target), which noted when
             on, off, watched = f.get("injected_s"), f.get("ended_s"), ("usv", "auv")
         else:
             ev = events.get(v, [])
@@ -183,9 +250,30 @@ def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_st
                                   "after_s": round(ts - on, 2),
                                   "released_s": round(release, 2) if release is not None else None,
                                   "reason": m.reason})
-        r = {"name": f["name"], "vehicle": v, "start_s": start, "end_s": f["end_s"],
-             "injected_s": round(on, 2) if on is not None else None,
-             "ended_s": round(off, 2) if off is not None else None, "responses": responses}
+        rule = f.get("rule") or None
+        first = next((x for x in responses if x["rule"] == rule), None) if rule else None
+        arrived = None
+        if f["name"] == "geofence" and on is not None:  # the USV mission's region check answers it
+            p = f.get("target_ned") or (float("nan"),) * 2
+            arrived = next((t for t, m in usv_targets if t >= on - 1e-6 and
+                            math.hypot(m.origin.x - p[0], m.origin.y - p[1]) < 1.0), None)
+            refusal = next(((_stamp(t, m), m.detail) for t, m in usv_status
+                            if _stamp(t, m) >= on - 1e-6 and REFUSED in m.detail), None)
+            if refusal:
+                first = {"vehicle": "usv", "rule": None, "action": "refuse", "after_s": round(refusal[0] - on, 2),
+                         "released_s": None, "reason": refusal[1].split(REFUSED + ": ", 1)[-1]}
+        detected = round(on + first["after_s"], 2) if first else None
+        r = {"name": f["name"], "vehicle": v, "rule": rule,
+             "injected_at_s": round(on, 2) if on is not None else None,
+             "detected_at_s": detected,
+             "action": first["action"] if first else None,
+             "safe_state_at_s": safe.reached(first["vehicle"], first["action"], detected) if first else None,
+             "recovered_at_s": first["released_s"] if first else None,
+             "reason": first["reason"] if first else None,
+             "start_s": start, "end_s": f["end_s"],
+             "ended_at_s": round(off, 2) if off is not None else None, "responses": responses}
+        if f["name"] == "geofence":
+            r["arrived_at_s"] = round(arrived, 2) if arrived is not None else None
         if f["name"] == "usbl" and on is not None:
             during = [e for t, e in nav_err if on <= t < end]
             sig = [e for t, e in nav_sigma if on <= t < end]
@@ -200,6 +288,7 @@ def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_st
                 # from the outage's end until the error stays under the bound (0: it never left it)
                 "nav_recovered_after_s": (round(max(bad) - end, 2) if bad else 0.0) if after else None,
             })
+        r["summary"] = _sentence(r)
         reports.append(r)
     return reports
 
@@ -247,11 +336,12 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     u = read_bag(usv_bag, ["/usv/ground_truth/odom", "/usv/guidance/path", "/usv/guidance/planned_path",
                            "/usv/guidance/status",
                            "/usv/guidance/safety_boxes", "/usv/obstacles", "/target", "/usv/mission/status",
-                           "/usv/sim/faults", "/usv/safety/transitions"])
+                           "/usv/sim/faults", "/usv/safety/transitions", "/usv/joystick_cmd"])
     a = read_bag(auv_bag, ["/auv/ground_truth/odom", "/auv/guidance/path", "/auv/guidance/planned_path",
                            "/auv/guidance/status",
                            "/auv/sonar/targets", "/target", "/auv/mission/status", "/auv/odom", "/auv/usbl/fix",
-                           "/auv/sim/faults", "/auv/safety/transitions", "/auv/navigation/status"])
+                           "/auv/sim/faults", "/auv/safety/transitions", "/auv/navigation/status",
+                           "/auv/thruster_setpoints", "/auv/rc_channels"])
     usv_track = odom_track_ned(u["/usv/ground_truth/odom"])
     auv_track = odom_track_ned(a["/auv/ground_truth/odom"])
     # the AUV's navigation: its estimate against its truth, each at its header stamp; the fixes it received
@@ -278,15 +368,25 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     nav_during = [e for t, e in nav_err if t <= auv_end_t]
     nav_after = [e for t, e in nav_err if t > auv_end_t]
     # a USBL outage's recovery is judged during the AUV's mission, not in the surface drift after it
+    safe = SafeStates(
+        {"usv": [(_stamp(t, m), m.surge == 0.0 and m.sway == 0.0 and m.yaw == 0.0) for t, m in u["/usv/joystick_cmd"]],
+         "auv": sorted([(_stamp(t, m), not any(m.setpoint)) for t, m in a["/auv/thruster_setpoints"]] +
+                       [(_stamp(t, m), all(c == 1500 for c in m.channels[2:6])) for t, m in a["/auv/rc_channels"]])},
+        {v: [(_stamp(t, m), math.hypot(m.twist.twist.linear.x, m.twist.twist.linear.y)) for t, m in bag[topic]]
+         for v, bag, topic in (("usv", u, "/usv/ground_truth/odom"), ("auv", a, "/auv/ground_truth/odom"))},
+        {"auv": [(_stamp(t, m), -m.pose.pose.position.z) for t, m in a["/auv/ground_truth/odom"]]})
     faults = fault_reports(list(planned_faults), {"usv": u["/usv/sim/faults"], "auv": a["/auv/sim/faults"]},
                            {"usv": u["/usv/safety/transitions"], "auv": a["/auv/safety/transitions"]},
                            [(t, e) for t, e in nav_err if t <= auv_end_t], nav_sigma,
-                           [(t, m.data) for t, m in a["/auv/navigation/status"]])
+                           [(t, m.data) for t, m in a["/auv/navigation/status"]], safe, u["/usv/mission/status"],
+                           u["/target"])
 
     targets_true = sc.get("targets", []) or []
     detected = None
+    phantoms = [f["target_ned"] for f in planned_faults if f.get("target_ned")]  # the geofence fault's: no detection
     for t, m in (u["/target"] or a["/target"]):
-        detected = (t, m)
+        if not any(math.hypot(m.origin.x - p[0], m.origin.y - p[1]) < 1.0 for p in phantoms):
+            detected = (t, m)
     # The mechanical sonar scans horizontally: it measures where the target is, not how deep (the detection
     # carries the AUV's depth). The localisation error is therefore horizontal; the 3-D figure is reported too.
     target_error = target_error_3d = float("nan")
@@ -446,12 +546,7 @@ def _summary(out, m, scenario):
         lines += ["Stacks that died: %s (simulated time [s]); the other vehicle moved at most %s afterwards." % (
             ", ".join("%s at %s" % kv for kv in m["stacks_died"].items()), _fmt(m["survivor_drift_m"], " m")), ""]
     for f in m.get("faults", []):
-        resp = "; ".join("%s %s -> %s after %.1f s%s" % (r["vehicle"].upper(), r["rule"], r["action"], r["after_s"],
-                                                          "" if r["released_s"] is None
-                                                          else ", released at %.1f s" % r["released_s"])
-                         for r in f["responses"]) or "no safety rule fired"
-        lines += ["Fault `%s` (%s) injected at %s s, ended at %s s: %s.%s" % (
-            f["name"], f["vehicle"].upper(), _fmt(f["injected_s"]), _fmt(f["ended_s"]), resp,
+        lines += ["Fault " + f["summary"] + (
             "" if "nav_error_max_m" not in f else
             " Navigation: error up to %s, sigma %s -> %s, statuses %s, back under %.1f m %s s after." % (
                 _fmt(f["nav_error_max_m"], " m"), _fmt(f["nav_sigma_before_m"], " m"), _fmt(f["nav_sigma_max_m"], " m"),

@@ -15,8 +15,10 @@ monitors to the same times, so the two masters share one time base although each
 --echo TOPIC (repeatable) subscribes the topic on this master, whatever its type, and prints each message as one
 JSON line {"echo": TOPIC, "type": "pkg/Type", "msg": {field: value, ...}} (times as {"secs", "nsecs"}, exact), at
 most --echo-rate per topic (default 10 Hz, counted in the messages' header stamps, i.e. simulated time).
---publish TOPIC (repeatable) takes such lines on stdin (next to the clock's target times) and publishes them on
-this master, typed by their "type" tag, field for field (the header stamp unchanged). A line that is neither a
+--publish TOPIC[:TYPE] (repeatable) takes such lines on stdin (next to the clock's target times) and publishes them
+on this master, typed by their "type" tag, field for field (the header stamp unchanged). With a TYPE
+("pkg/Type") the publisher is there from the start, so that subscribers (the relay) are connected before the
+first line; without, it appears with the first line. A line that is neither a
 time nor a line for one of these topics, or whose message does not fit its type, is counted ("bad_lines" in the
 status lines) and ignored.
 """
@@ -113,8 +115,16 @@ class Republisher:
     """Publishes the echo lines of the named topics on this master; counts the lines it cannot use."""
 
     def __init__(self, topics):
-        self.topics, self.pubs, self.lock = set(topics), {}, threading.Lock()
+        self.topics, self.pubs, self.lock = set(), {}, threading.Lock()
         self.published = self.bad_lines = 0
+        for spec in topics:
+            topic, _, msg_type = spec.partition(":")
+            self.topics.add(topic)
+            if msg_type:
+                cls = roslib.message.get_message_class(msg_type)
+                if cls is None:
+                    raise SystemExit("--publish %s: unknown message type %r" % (spec, msg_type))
+                self.pubs[topic] = rospy.Publisher(topic, cls, queue_size=20, latch=True)
 
     def line(self, d):
         try:
@@ -124,7 +134,8 @@ class Republisher:
             m = from_plain(msg_type, d["msg"])
             pub = self.pubs.get(topic)
             if pub is None or pub.type != msg_type:
-                pub = self.pubs[topic] = rospy.Publisher(topic, type(m), queue_size=20)
+                # latched: a subscriber that connects only once the publisher appears (the relay) still gets it
+                pub = self.pubs[topic] = rospy.Publisher(topic, type(m), queue_size=20, latch=True)
             pub.publish(m)
             self.published += 1
         except (KeyError, TypeError, ValueError, rospy.ROSException):
@@ -202,8 +213,9 @@ def main():
     ap.add_argument("--echo", action="append", default=[], metavar="TOPIC",
                     help="print this topic's messages as JSON lines (repeatable)")
     ap.add_argument("--echo-rate", type=float, default=10.0, help="at most this many lines per echoed topic [Hz]")
-    ap.add_argument("--publish", action="append", default=[], metavar="TOPIC",
-                    help="publish the echo lines of this topic read on stdin (repeatable)")
+    ap.add_argument("--publish", action="append", default=[], metavar="TOPIC[:TYPE]",
+                    help="publish the echo lines of this topic read on stdin (repeatable); with its type, from the "
+                         "start")
     a = ap.parse_args()
     if not 0.0 < a.echo_rate <= 10.0:
         ap.error("--echo-rate: 0 < HZ <= 10")

@@ -3,11 +3,13 @@
 //   in:  joystick_cmd (offshore_gnc/JoystickCommand, autonomy)        -> per-jet set-point frames on the bus
 //   out: /usv_gps (NavSatFix), /usv_heading (QuaternionStamped, ENU), gps/velocity (TwistStamped, ENU),
 //        waterjet/status (WaterjetStatus), waterjet/answering (WaterjetAnswering, latched: for the safety
-//        supervisor's jet rule), manual_cmd (JoystickCommand seen from the bridge)
+//        supervisor's jet rule), can/bus_state (CanBusState, latched: its bus_off rule), manual_cmd
+//        (JoystickCommand seen from the bridge)
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/QuaternionStamped.h>
 #include <geometry_msgs/TwistStamped.h>
 #include <nodelet/nodelet.h>
+#include <offshore_gnc/CanBusState.h>
 #include <offshore_gnc/JoystickCommand.h>
 #include <offshore_gnc/WaterjetAnswering.h>
 #include <offshore_gnc/WaterjetStatus.h>
@@ -28,6 +30,13 @@
 #include "offshore_gnc/ros/params.h"
 
 namespace offshore_gnc {
+
+static_assert(CanBusState::STATE_DOWN == static_cast<int>(can::BusState::kDown) &&
+              CanBusState::STATE_ERROR_ACTIVE == static_cast<int>(can::BusState::kErrorActive) &&
+              CanBusState::STATE_ERROR_WARNING == static_cast<int>(can::BusState::kErrorWarning) &&
+              CanBusState::STATE_ERROR_PASSIVE == static_cast<int>(can::BusState::kErrorPassive) &&
+              CanBusState::STATE_BUS_OFF == static_cast<int>(can::BusState::kBusOff),
+              "CanBusState.msg's STATE_* must match can::BusState");
 
 class CanGatewayNodelet : public nodelet::Nodelet {
  public:
@@ -66,6 +75,7 @@ class CanGatewayNodelet : public nodelet::Nodelet {
     status_pub_ = nh.advertise<offshore_gnc::WaterjetStatus>("waterjet/status", 10);
     manual_pub_ = nh.advertise<offshore_gnc::JoystickCommand>("manual_cmd", 10);
     answering_pub_ = nh.advertise<offshore_gnc::WaterjetAnswering>("waterjet/answering", 1, true);
+    bus_pub_ = nh.advertise<offshore_gnc::CanBusState>("can/bus_state", 1, true);
     cmd_sub_ = nh.subscribe("joystick_cmd", 10, &CanGatewayNodelet::onCommand, this);
 
     outputs_.position = [this](const can::n2k::PositionRapid& v, std::uint8_t) {
@@ -139,6 +149,14 @@ class CanGatewayNodelet : public nodelet::Nodelet {
         if (!a[i]) NODELET_ERROR("waterjet %s not answering on %s: both jets get the neutral command", can::jetName(i), iface_.c_str());
     };
 
+    outputs_.bus_state = [this](can::BusState st) {
+      offshore_gnc::CanBusState m;
+      m.header.stamp = ros::Time::now();
+      m.state = static_cast<std::uint8_t>(st);
+      m.state_name = can::toString(st);
+      bus_pub_.publish(m);
+    };
+
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("can:" + bus.iface);
     updater_->add("can gateway", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
@@ -187,7 +205,7 @@ class CanGatewayNodelet : public nodelet::Nodelet {
   std::unique_ptr<can::CanGateway> gateway_;
   can::GatewayOutputs outputs_;
   std::string gps_frame_, world_frame_, iface_;
-  ros::Publisher gps_pub_, heading_pub_, velocity_pub_, status_pub_, manual_pub_, answering_pub_;
+  ros::Publisher gps_pub_, heading_pub_, velocity_pub_, status_pub_, manual_pub_, answering_pub_, bus_pub_;
   ros::Subscriber cmd_sub_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::WallTimer diag_timer_;

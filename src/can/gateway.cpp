@@ -190,6 +190,10 @@ void CanGateway::spinOnce(double max_wait_s, const GatewayOutputs& out) {
       reported_answering_ = policy_.answeringAtTick();
       if (out.answering) out.answering(*reported_answering_);
     }
+    if (reported_state_ != bus_->state()) {
+      reported_state_ = bus_->state();
+      if (out.bus_state) out.bus_state(*reported_state_);
+    }
   }
   bus_->flush();
 }

@@ -98,6 +98,7 @@ MissionResult runMission(const MissionConfig& cfg) {
     auv.step();
     t = usv.time();
     usv.onPeerAlive(t);  // the relay's link is up for the whole run
+    auv.onPeerAlive(t);
     if (auto tg = auv.takeTarget()) {
       res.target = *tg;
       in_flight = std::make_pair(t + cfg.relay_latency, *tg);
@@ -149,6 +150,8 @@ MissionResult runMission(const MissionConfig& cfg) {
   finish(res.usv, mission::toString(usv.mission().phase()));
   finish(res.auv, mission::toString(auv.mission().phase()));
   res.sim_time_s = t;
+  res.usv_safety = usv.supervisor().transitions();
+  res.auv_safety = auv.supervisor().transitions();
   res.usv_hold_p95_m = percentile(hold_error, 0.95);
 
   const auto& targets = cfg.scenario.world.targets;

@@ -1,8 +1,11 @@
 // mission_rosfree: the co-operative mission ROS-free in one process (closed_loop::runMission), on the same
 // scenario, configuration files and seeds as ./scripts/mission. Prints one JSON object with the figures the
 // mission report gives (metrics.json's keys); --out DIR also writes the tracks as CSV, and the USV's trace
-// (usv_trace.csv: truth, guidance's reference, the joystick command) for tuning.
-//   mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--config DIR] [--relay-latency S] [--out DIR]
+// (usv_trace.csv: truth, guidance's reference, the joystick command) for tuning. --fault PLAN injects the
+// simulators' faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault; not the main job's own, link and
+// geofence); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
+//   mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--config DIR] [--relay-latency S]
+//                   [--fault PLAN] [--out DIR]
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -11,6 +14,8 @@
 #include <string>
 
 #include "offshore_gnc/closed_loop/mission.h"
+#include "offshore_gnc/common/faults.h"
+#include "offshore_gnc/common/validate.h"
 
 using namespace offshore_gnc;
 
@@ -26,6 +31,17 @@ std::string str(const std::string& s) {
   for (char c : s) o += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
   return o + "\"";
 }
+// The supervisor's activations as a JSON list: "T s RULE -> ACTION: REASON".
+std::string activations(const std::vector<safety::Transition>& transitions) {
+  std::string o;
+  for (const auto& tr : transitions) {
+    if (!tr.to_active || tr.rule == "manual") continue;
+    char b[64];
+    std::snprintf(b, sizeof b, "%.2f s ", tr.t);
+    o += (o.empty() ? "" : ", ") + str(b + tr.rule + " -> " + safety::actionName(tr.action) + ": " + tr.reason);
+  }
+  return "[" + o + "]";
+}
 void writeCsv(const std::string& path, const char* header, const std::vector<Eigen::Vector4d>& rows) {
   std::ofstream f(path);
   f << header << "\n";
@@ -34,7 +50,7 @@ void writeCsv(const std::string& path, const char* header, const std::vector<Eig
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scenario, model = "girona500", config = OFFSHORE_GNC_CONFIG_DIR, out;
+  std::string scenario, model = "girona500", config = OFFSHORE_GNC_CONFIG_DIR, out, faults;
   double latency = 0.0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -50,10 +66,11 @@ int main(int argc, char** argv) {
     else if (a == "--config") config = next();
     else if (a == "--relay-latency") latency = std::stod(next());
     else if (a == "--out") out = next();
+    else if (a == "--fault") faults += " " + next();
     else {
       std::fprintf(stderr,
                    "usage: mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--config DIR] "
-                   "[--relay-latency S] [--out DIR]\n");
+                   "[--relay-latency S] [--fault PLAN] [--out DIR]\n");
       return 2;
     }
   }
@@ -64,6 +81,12 @@ int main(int argc, char** argv) {
   try {
     closed_loop::MissionConfig cfg = closed_loop::loadMission(config, scenario, model);
     cfg.relay_latency = latency;
+    const FaultPlan plan = FaultPlan::parse(faults);  // ConfigError naming a bad item
+    for (const auto& f : plan.faults())
+      if (std::string(findFaultKind(f.name)->vehicle) == "both")
+        throw ConfigError("fault '" + f.name + "' is the main job's, between the masters: not in the ROS-free mission");
+    cfg.usv.sim.faults = plan.of("usv");
+    cfg.auv.sim.faults = plan.of("auv");
     const closed_loop::MissionResult r = closed_loop::runMission(cfg);
     if (!out.empty()) {
       writeCsv(out + "/usv_truth.csv", "t,north,east,down", r.usv.truth);
@@ -79,7 +102,7 @@ int main(int argc, char** argv) {
         "\"auv_approach_rmse_m\": %s, \"auv_rmse_estimate_m\": %s, "
         "\"target_error_m\": %s, \"detection_time_s\": %s, \"min_clearance_m\": %s, "
         "\"usv_final_distance_to_target_m\": %s, \"usv_wait_drift_m\": %s, \"usv_hold_p95_m\": %s, "
-        "\"usv_final_phase\": %s, \"auv_final_phase\": %s, "
+        "\"usv_final_phase\": %s, \"auv_final_phase\": %s, \"usv_safety\": %s, \"auv_safety\": %s, "
         "\"sim_time_s\": %s, \"wall_time_s\": %s}\n",
         r.success ? "true" : "false", str(r.reason).c_str(), num(r.usv.metrics.rmse).c_str(),
         num(r.usv.metrics.sd).c_str(), num(r.usv.metrics.mae).c_str(), r.usv.metrics.samples,
@@ -87,7 +110,8 @@ int main(int argc, char** argv) {
         num(r.auv.tracking_truth.mae).c_str(), r.auv.tracking_truth.samples, num(r.auv.approach_truth.rmse).c_str(),
         num(r.auv.tracking.rmse).c_str(), num(r.target_error_m).c_str(), num(r.detection_time_s).c_str(),
         num(r.min_clearance_m).c_str(), num(r.usv_final_distance_to_target_m).c_str(),
-        num(r.usv_wait_drift_m).c_str(), num(r.usv_hold_p95_m).c_str(), str(r.usv.final_phase).c_str(), str(r.auv.final_phase).c_str(), num(r.sim_time_s).c_str(),
+        num(r.usv_wait_drift_m).c_str(), num(r.usv_hold_p95_m).c_str(), str(r.usv.final_phase).c_str(), str(r.auv.final_phase).c_str(),
+        activations(r.usv_safety).c_str(), activations(r.auv_safety).c_str(), num(r.sim_time_s).c_str(),
         num(r.wall_time_s).c_str());
     return r.success ? 0 : 1;
   } catch (const std::exception& e) {

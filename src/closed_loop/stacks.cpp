@@ -5,10 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/perception/sensor_frame.h"
-#include "offshore_gnc/safety/supervisor.h"
 
 namespace offshore_gnc {
 namespace closed_loop {
@@ -75,7 +76,37 @@ control::ControlLoopParams readControl(const std::vector<std::string>& files) {
   return c;
 }
 
+safety::SupervisorConfig readSafety(const std::string& file, safety::SupervisorConfig preset) {
+  readParamsYaml(loadYaml(file), safety::SupervisorConfig::table(), preset, file);
+  return preset;
+}
+
+// The Control nodelet's reading of the decision: warn asks nothing, abort surfaces (the USV: neutral), manual wins.
+control::SafetyOverride overrideOf(const safety::Decision& d) {
+  using A = safety::Action;
+  using O = control::SafetyOverride;
+  if (d.manual) return O::kNone;
+  switch (d.action) {
+    case A::kHold: return O::kHold;
+    case A::kNeutral: return O::kNeutral;
+    case A::kSurface:
+    case A::kAbort: return O::kSurface;
+    default: return O::kNone;
+  }
+}
+
 }  // namespace
+
+StackSupervisor::StackSupervisor(const safety::SupervisorConfig& cfg, double dt, double rate_hz)
+    : sup_(cfg), every_(stepsPer(rate_hz, dt)) {}
+
+void StackSupervisor::tick(long step, double t, control::ControlLoop& control) {
+  if (step % every_ != 0) return;
+  safety::SupervisorOutput out = sup_.update(t);
+  transitions_.insert(transitions_.end(), out.transitions.begin(), out.transitions.end());
+  decision_ = out.decision;
+  control.setSafety(overrideOf(decision_), decision_.active_rule + ": " + decision_.reason);
+}
 
 // ------------------------------------------------------------------------------------------------- USV
 UsvStackConfig loadUsvStack(const std::string& dir) {
@@ -94,10 +125,7 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
   c.control = readControl({dir + "/control/usv.yaml"});
   const std::string mission = dir + "/mission/usv.yaml";
   readParamsYaml(loadYaml(mission), mission::UsvMissionParams::table(), c.mission, mission);
-  const std::string safety_file = dir + "/safety/usv.yaml";  // as the mission nodelet reads the region
-  safety::SupervisorConfig sc = safety::usvDefaults();
-  readParamsYaml(loadYaml(safety_file), safety::SupervisorConfig::table(), sc, safety_file);
-  c.region = sc.region;
+  c.safety = readSafety(dir + "/safety/usv.yaml", safety::usvDefaults());  // as the nodelets read it
   c.sim.seed = 1;  // sim_usv.launch's default
   return c;
 }
@@ -110,10 +138,11 @@ UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
       guidance_(cfg.guidance),
       control_(cfg.control),
       mission_(cfg.mission),
+      safety_(cfg.safety, cfg.sim.dt),
       guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
       mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {
-  if (!cfg.region.empty()) mission_.setRegion(safety::Region::fromList(cfg.region));
+  if (!cfg.safety.region.empty()) mission_.setRegion(safety::Region::fromList(cfg.safety.region));
 }
 
 void UsvStack::onTarget(const Eigen::Vector2d& ned, double t) {
@@ -125,7 +154,10 @@ void UsvStack::onTarget(const Eigen::Vector2d& ned, double t) {
   }
 }
 
-void UsvStack::onPeerAlive(double t) { mission_.onPeerAlive(t); }
+void UsvStack::onPeerAlive(double t) {
+  mission_.onPeerAlive(t);
+  safety_.core().heard(safety::Source::kLink, t);
+}
 
 void UsvStack::perceive(double t) {
   // LidarTargets: each frame positioned with the navigation pose at its stamp (tf2's wait, then drop).
@@ -141,6 +173,7 @@ void UsvStack::perceive(double t) {
     const perception::LidarResult r = lidar_.extract(viewOf(cloud_));
     const Eigen::Isometry3d to_world = body * sim::sensorMount(cfg_.sim.lidar.mount, cfg_.sim.lidar.mount_yaw, false);
     obstacles_.clear();
+    seen_.clear();
     for (const auto& g : r.targets) {
       const perception::TargetGeometry w = perception::transformed(g, to_world);
       guidance::SbbObstacle o;
@@ -148,10 +181,32 @@ void UsvStack::perceive(double t) {
       o.length = w.length;
       o.width = w.width;
       obstacles_.push_back(o);
+      safety::SeenObstacle so;
+      so.origin = o.origin;
+      so.axis = w.axis.head<2>();
+      so.length = w.length;
+      so.width = w.width;
+      seen_.push_back(so);
     }
     if (r.error == perception::CloudError::None && cfg_.guidance.sbb_enabled) guidance_.setObstacles(obstacles_, t);
     scans_.pop_front();
   }
+}
+
+void UsvStack::checkCollision(double t) {
+  if (!estimate_) return;
+  const VehicleState& s = cfg_.use_truth ? sim_.state() : *estimate_;
+  std::vector<safety::SafetyBoxView> boxes;
+  for (const auto& b : guidance_.plan().boxes) {
+    safety::SafetyBoxView v;
+    for (int i = 0; i < 4; ++i) v.corners[i] = b.corners[i];
+    v.cuts_path = b.cuts_path;
+    v.blocked = b.side == guidance::SbbSide::kBlocked;
+    boxes.push_back(v);
+  }
+  const Eigen::Vector2d p = s.position.head<2>(), v = Eigen::Rotation2Dd(s.yaw) * s.velocity.head<2>();
+  const safety::Collision c = safety::timeToCollision(p, v, seen_, cfg_.safety.collision_radius);
+  safety_.core().timeToCollision(t, c.ttc, safety::safeSideExists(boxes, p));
 }
 
 void UsvStack::step() {
@@ -159,7 +214,10 @@ void UsvStack::step() {
   const double t = sim_.state().t;
   ++step_;
   guided_ = false;
+  safety::Supervisor& sup = safety_.core();  // fed as the SafetySupervisor nodelet is
+  bool course = false;                       // the time to collision's inputs changed
   if (out.gps) {  // GpsNavigation: heading and velocity first, then the fix
+    sup.heard(safety::Source::kGps, out.gps->t);
     nav_.heading(out.gps->t, out.gps->heading);
     nav_.velocity(out.gps->t, out.gps->velocity_ned, out.gps->rate_of_turn);
     if (auto e = nav_.fix(out.gps->t, out.gps->fix)) {
@@ -169,10 +227,22 @@ void UsvStack::step() {
       guidance_.setState(s, t);
       control_.onState(s, t);
       if (cfg_.mission_enabled) mission_.onPose(s.position.head<2>(), s.yaw, s.t);
+      sup.heard(safety::Source::kNavigation, t);
+      sup.position(t, s.position.x(), s.position.y());
+      course = true;
     }
   }
-  if (out.lidar) scans_.push_back(sim_.scan());
+  if (out.gateway_changed) {  // what the CAN gateway would report (the simulator's stand-in)
+    for (int i = 0; i < 2; ++i) sup.jetAnswering(t, i, sim_.gateway().answering[i]);
+    sup.busOff(t, sim_.gateway().bus_off);
+  }
+  if (out.lidar) {
+    scans_.push_back(sim_.scan());
+    sup.heard(safety::Source::kLidar, t);
+  }
+  const std::size_t queued = scans_.size();
   perceive(t);
+  course = course || scans_.size() < queued;
   if (cfg_.mission_enabled) {
     if (step_ % mission_every_ == 0) mission_.tick(t);
     if (auto p = mission_.takePath()) {
@@ -183,16 +253,20 @@ void UsvStack::step() {
   }
   if (step_ % guidance_every_ == 0 && guidance_.update(t, guidance_every_ * cfg_.sim.dt, last_)) {
     guided_ = true;
+    course = course || last_.boxes_changed;
     control_.onReference(last_.reference, t);
     if (cfg_.mission_enabled)
       mission_.onGuidance(last_.los.mode, last_.los.distance_to_go, t,
                           last_.reference.mode == ReferenceMode::kHold ? Eigen::Vector2d(last_.reference.point.head<2>())
                                                                        : mission::kNoPoint);
   }
+  if (course) checkCollision(t);
+  safety_.tick(step_, t, control_);
   if (step_ % control_every_ == 0) {
     command_ = control_.update(t);
     const auto& j = command_.joystick;
     sim_.setCommand(models::UsvCommand{j.surge, j.sway, j.yaw});
+    sup.heard(safety::Source::kCommand, t);
   }
 }
 
@@ -224,6 +298,8 @@ AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, co
   else
     readParamsYaml(m, mission::CoverageArea::table(), c.mission.coverage, mission, "coverage/");
   c.mission.validate();
+  c.safety = readSafety(dir + "/safety/auv.yaml", safety::auvDefaults());
+  c.safety.usbl_timeout = 0.0;  // no USBL in the ROS-free stack (AuvStackConfig::safety)
   c.sim.seed = 2;  // sim_auv.launch's default
   c.sim.auv = model == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
   return c;
@@ -236,6 +312,7 @@ AuvStack::AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg)
       guidance_(cfg.guidance),
       control_(cfg.control),
       mission_(cfg.mission),
+      safety_(cfg.safety, cfg.sim.dt),
       guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
       mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {}
@@ -251,6 +328,7 @@ void AuvStack::perceive() {
       beams_.pop_front();
       continue;
     }
+    if (!(b.head_status & (sim::kFault | sim::kCentring))) safety_.core().heard(safety::Source::kSonar, b.t);
     if (!poses_.at(b.t, body)) {
       if (t - b.t <= cfg_.pose_timeout) break;
       sonar_.counters().increment("no_transform");
@@ -274,13 +352,18 @@ void AuvStack::step() {
   const double t = sim_.state().t;
   ++step_;
   guided_ = false;
+  safety::Supervisor& sup = safety_.core();  // fed as the SafetySupervisor nodelet is
   if (out.odom) {  // the INS estimate: /auv/odom and its TF
     estimate_ = out.odom;
     const VehicleState& s = cfg_.use_truth ? sim_.state() : *out.odom;
     poses_.add(s);
     guidance_.setState(s, t);
     control_.onState(s, t);
+    sup.heard(safety::Source::kNavigation, t);
+    sup.position(t, s.position.x(), s.position.y());
+    sup.depth(t, s.position.z());
   }
+  if (out.depth) sup.heard(safety::Source::kDepth, t);
   if (out.sonar) beams_.push_back(sim_.beam());
   perceive();
   if (cfg_.mission_enabled) {
@@ -296,7 +379,9 @@ void AuvStack::step() {
       if (auto p = mission_.takePath()) guidance_.setPath(*p);
     }
   }
+  safety_.tick(step_, t, control_);
   if (step_ % control_every_ == 0) {
+    sup.heard(safety::Source::kCommand, t);
     const control::ActuatorCommand c = control_.update(t);
     if (cfg_.model == "girona500") {
       const auto& sp = c.thrusters.alloc.setpoint;

@@ -2,7 +2,8 @@
 // (/auv/usbl/fix, placed on the USV and relayed, stamped when taken), depth from /auv/pressure, yaw and yaw rate
 // from the AHRS (/auv/imu), and the DVL (/auv/dvl, Girona500) or the commanded surge (/auv/guidance/status,
 // aColor) -> /auv/odom + TF map -> auv/base_link at a fixed rate on the ROS (simulation) clock, once the first fix
-// has initialised the filter; /auv/navigation/status (latched) and diagnostics. Replaces the simulator's
+// has initialised the filter and while it has a heading (no_heading: its dead reckoning has stopped, so it
+// publishes no estimate rather than a frozen one, and the safety supervisor's navigation rule sees the silence); /auv/navigation/status (latched) and diagnostics. Replaces the simulator's
 // INS-like /auv/odom with `navigation:=usbl`. Thin: parameters, message conversion, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/TwistWithCovarianceStamped.h>
@@ -222,7 +223,9 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
       rate_cov = rate_cov_;
     }
     if (e.status != before) publishStatus(e.status, before);
-    if (e.status == navigation::NavStatus::kNoFix || repeated) return;  // nothing before the first fix
+    // nothing before the first fix, nor without a heading (the dead reckoning has stopped: no estimate to give)
+    using navigation::NavStatus;
+    if (e.status == NavStatus::kNoFix || e.status == NavStatus::kNoHeading || repeated) return;
 
     // NED/FRD state. R_nb: body FRD -> NED, the same roll, pitch and yaw as the published orientation.
     const Eigen::Matrix3d R_nb = (Eigen::AngleAxisd(e.yaw, Eigen::Vector3d::UnitZ()) *

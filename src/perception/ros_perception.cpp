@@ -4,8 +4,10 @@
 #include <tf2/exceptions.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/perception/sensor_frame.h"
@@ -13,6 +15,10 @@
 
 namespace offshore_gnc {
 namespace perception_ros {
+
+namespace {
+constexpr double kPoseSilentS = 1.0;  // a pose this much older than a message: its source has stopped [s]
+}  // namespace
 
 perception::CloudView cloudView(const sensor_msgs::PointCloud2& m) {
   perception::CloudView v;
@@ -58,6 +64,14 @@ bool lookupPose(const tf2_ros::Buffer& tf, const std::string& target, const std:
     // would only block the manager's threads for `timeout` per message: fail at once.
     if (!tf.canTransform(target, source, ros::Time(0))) {
       error = "no transform " + target + " <- " + source + " yet";
+      return false;
+    }
+    // Likewise once the pose has stopped (the navigation without an estimate: its `nav` fault, docs/safety.md):
+    // every message waited `timeout` for it, and at the simulation's speed-up that starved the manager's timers
+    // (the supervisor's and the controller's ticks came seconds late).
+    const ros::Time latest = tf.lookupTransform(target, source, ros::Time(0)).header.stamp;
+    if (!latest.isZero() && stamp - latest > ros::Duration(std::max(kPoseSilentS, 10.0 * timeout))) {
+      error = "no transform " + target + " <- " + source + " for " + std::to_string((stamp - latest).toSec()) + " s";
       return false;
     }
     const auto t = tf.lookupTransform(target, source, stamp, ros::Duration(timeout));
@@ -114,6 +128,9 @@ offshore_gnc::Target toTarget(const perception::TargetGeometry& sensor_frame, co
   t.centroid = toPoint(g.centroid);
   t.nearest = toPoint(g.nearest);
   t.length = g.length;
+  t.axis.x = g.axis.x();
+  t.axis.y = g.axis.y();
+  t.axis.z = g.axis.z();
   t.width = g.width;
   t.height = g.height;
   t.range = g.range;

@@ -43,6 +43,7 @@ TargetGeometry describeTarget(const std::vector<Eigen::Vector3d>& points, const 
   Eigen::Vector2d u = last->head<2>() - first->head<2>();
   if (u.squaredNorm() < 1e-12) u = Eigen::Vector2d(-c.y(), c.x());  // one return: across the line of sight
   u.normalize();
+  g.axis = Eigen::Vector3d(u.x(), u.y(), 0.0);
   const Eigen::Vector2d n(-u.y(), u.x());
   double lmin = std::numeric_limits<double>::infinity(), lmax = -lmin, wmin = lmin, wmax = -lmin;
   for (const auto& p : points) {

@@ -3,22 +3,29 @@
 // rule transition logged (WARN on activation, INFO on release) and published on /<vehicle>/safety/transitions
 // (not latched: a bag records every one), diagnostics (OK: no action, WARN: warn, ERROR: hold and above).
 //   vehicle: usv -> /usv_gps (gps: fixes only), /usv/odom (navigation, position), /usv/lidar/points (lidar),
-//                   /relay/link_status (link, while up), /usv/joystick_cmd (command), /usv/manual_cmd (manual)
+//                   /relay/link_status (link, while up), /usv/joystick_cmd (command), /usv/manual_cmd (manual),
+//                   /usv/waterjet/answering (jet), /usv/can/bus_state (bus_off: off or down), and for the collision
+//                   rule the time to collision (safety::timeToCollision: /usv/obstacles on the course /usv/odom
+//                   gives) with the safe side from /usv/guidance/safety_boxes (safety::safeSideExists)
 //   vehicle: auv -> /auv/odom (navigation, position, depth), /auv/sonar/beam (sonar: valid beams),
 //                   /auv/usbl/fix (usbl: QUALITY_OK fixes), /auv/pressure (depth sensor), /relay/link_status (link),
 //                   /auv/thruster_setpoints and /auv/rc_channels (command: whichever the vehicle's control publishes)
 // Times: the message's header stamp when non-zero, else ros::Time::now(). Thin: parameters, message conversion,
-// the core, publishing. The decision does not reach the controllers yet (docs/safety.md).
+// the core, publishing. The Control nodelet enforces the decision (docs/safety.md).
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
+#include <offshore_gnc/CanBusState.h>
 #include <offshore_gnc/JoystickCommand.h>
 #include <offshore_gnc/LinkStatus.h>
 #include <offshore_gnc/RcChannels.h>
+#include <offshore_gnc/SafetyBoxArray.h>
 #include <offshore_gnc/SafetyState.h>
 #include <offshore_gnc/SonarBeam.h>
+#include <offshore_gnc/TargetArray.h>
 #include <offshore_gnc/ThrusterSetpoints.h>
 #include <offshore_gnc/UsblFix.h>
+#include <offshore_gnc/WaterjetAnswering.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
 #include <sensor_msgs/FluidPressure.h>
@@ -34,8 +41,12 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
+#include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/safety/collision.h"
 #include "offshore_gnc/safety/supervisor.h"
 
 namespace offshore_gnc {
@@ -83,6 +94,10 @@ class SafetySupervisorNodelet : public nodelet::Nodelet {
       subs_.push_back(nh.subscribe("/usv/lidar/points", 2, &SafetySupervisorNodelet::onLidar, this));
       subs_.push_back(nh.subscribe("/usv/joystick_cmd", 10, &SafetySupervisorNodelet::onJoystick, this));
       subs_.push_back(nh.subscribe("/usv/manual_cmd", 10, &SafetySupervisorNodelet::onManual, this));
+      subs_.push_back(nh.subscribe("/usv/waterjet/answering", 10, &SafetySupervisorNodelet::onAnswering, this));
+      subs_.push_back(nh.subscribe("/usv/can/bus_state", 10, &SafetySupervisorNodelet::onBus, this));
+      subs_.push_back(nh.subscribe("/usv/obstacles", 5, &SafetySupervisorNodelet::onObstacles, this));
+      subs_.push_back(nh.subscribe("/usv/guidance/safety_boxes", 5, &SafetySupervisorNodelet::onBoxes, this));
     } else {
       subs_.push_back(nh.subscribe("/auv/odom", 10, &SafetySupervisorNodelet::onOdom, this));
       subs_.push_back(nh.subscribe("/auv/sonar/beam", 50, &SafetySupervisorNodelet::onSonar, this));
@@ -144,7 +159,8 @@ class SafetySupervisorNodelet : public nodelet::Nodelet {
     if (std::isfinite(m->fluid_pressure)) heard(Source::kDepth, m->header);
   }
 
-  // Odometry in map (ENU): the position to local NED for the operating region; the AUV's depth is -z.
+  // Odometry in map (ENU): the position to local NED for the operating region; the AUV's depth is -z. The USV's
+  // course over ground for the time to collision.
   void onOdom(const nav_msgs::Odometry::ConstPtr& m) {
     double t;
     if (!stampOf(m->header, t)) return;
@@ -153,6 +169,65 @@ class SafetySupervisorNodelet : public nodelet::Nodelet {
     if (std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)) sup_->heard(Source::kNavigation, t);
     sup_->position(t, q.y, q.x);             // north, east; a non-finite pose is counted as bad input
     if (vehicle_ == "auv") sup_->depth(t, -q.z);
+    if (vehicle_ != "usv") return;
+    const VehicleState s = ros_util::stateFromOdom(*m);
+    position_ = s.position.head<2>();
+    velocity_ = Eigen::Rotation2Dd(s.yaw) * s.velocity.head<2>();  // body -> NED
+    have_course_ = true;
+    checkCollision(t);
+  }
+
+  // The LiDAR's obstacles (map_ned), each frame replacing the last.
+  void onObstacles(const TargetArray::ConstPtr& m) {
+    double t;
+    if (!stampOf(m->header, t)) return;
+    std::lock_guard<std::mutex> l(mutex_);
+    obstacles_.clear();
+    for (const auto& o : m->targets) {
+      safety::SeenObstacle so;
+      so.origin = {o.origin.x, o.origin.y};
+      so.axis = {o.axis.x, o.axis.y};
+      so.length = o.length;
+      so.width = o.width;
+      obstacles_.push_back(so);
+    }
+    checkCollision(t);
+  }
+  // The guidance's safety boxes after each replan (map_ned), for the safe side.
+  void onBoxes(const SafetyBoxArray::ConstPtr& m) {
+    double t;
+    if (!stampOf(m->header, t)) return;
+    std::lock_guard<std::mutex> l(mutex_);
+    boxes_.clear();
+    for (const auto& b : m->boxes) {
+      safety::SafetyBoxView v;
+      for (int i = 0; i < 4; ++i) v.corners[i] = {b.corners[i].x, b.corners[i].y};
+      v.cuts_path = b.cuts_path;
+      v.blocked = b.side == SafetyBox::SIDE_BLOCKED;
+      boxes_.push_back(v);
+    }
+    checkCollision(t);
+  }
+  void checkCollision(double t) {  // under mutex_
+    if (!have_course_) return;
+    collision_ = safety::timeToCollision(position_, velocity_, obstacles_, sup_->config().collision_radius);
+    if (collision_.skipped) counters_.increment("bad_obstacles", collision_.skipped);
+    safe_side_ = safety::safeSideExists(boxes_, position_);
+    sup_->timeToCollision(t, collision_.ttc, safe_side_);  // NaN (a bad course): refused and counted there
+  }
+
+  // What the CAN gateway (the simulator, in simulation) reports of the bus and the jets.
+  void onAnswering(const WaterjetAnswering::ConstPtr& m) {
+    double t;
+    if (!stampOf(m->header, t)) return;
+    std::lock_guard<std::mutex> l(mutex_);
+    for (int i = 0; i < 2; ++i) sup_->jetAnswering(t, i, m->answering[i]);
+  }
+  void onBus(const CanBusState::ConstPtr& m) {
+    double t;
+    if (!stampOf(m->header, t)) return;
+    std::lock_guard<std::mutex> l(mutex_);
+    sup_->busOff(t, m->state == CanBusState::STATE_BUS_OFF || m->state == CanBusState::STATE_DOWN);
   }
 
   // Manual joystick / steering wheel seen from the bridge (the CAN gateway): manual until manual_timeout after
@@ -254,6 +329,11 @@ class SafetySupervisorNodelet : public nodelet::Nodelet {
     s.add("reason", d.reason);
     s.add("manual", d.manual ? "true" : "false");
     s.add("active_rules", active);
+    if (vehicle_ == "usv") {
+      s.addf("time_to_collision_s", "%.1f", collision_.ttc);
+      s.add("safe_side", safe_side_ ? "yes" : "none (a safety box on the path is blocked, or the USV is inside one)");
+      ros_util::addCounters(s, counters_, {"bad_obstacles"});
+    }
     const auto counts = sup_->counters().snapshot();  // both shown from the start, zero until they move
     for (const char* k : {"bad_input", "transitions"})
       if (!counts.count(k)) s.add(k, 0);
@@ -261,6 +341,13 @@ class SafetySupervisorNodelet : public nodelet::Nodelet {
   }
 
   std::atomic<bool> link_up_{false};
+  // the time to collision's inputs (USV)
+  Eigen::Vector2d position_ = Eigen::Vector2d::Zero(), velocity_ = Eigen::Vector2d::Zero();
+  bool have_course_ = false, safe_side_ = true;
+  std::vector<safety::SeenObstacle> obstacles_;
+  std::vector<safety::SafetyBoxView> boxes_;
+  safety::Collision collision_;
+  Counters counters_;
   std::mutex mutex_;  // the core and the decision: callbacks and timers may run concurrently
   std::unique_ptr<safety::Supervisor> sup_;
   std::string vehicle_;

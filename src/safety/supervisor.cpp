@@ -115,6 +115,8 @@ const ParamTable<SupervisorConfig>& SupervisorConfig::table() {
         .number("min_altitude", &P::min_altitude, -1.0, 1000.0, "m", "closer to the bottom is a fault (<= 0 disables)")
         .number("allstop_ttc", &P::allstop_ttc, -1.0, 600.0, "s",
                 "all-stop below this time to collision when no side is safe (<= 0 disables)")
+        .number("collision_radius", &P::collision_radius, 0.0, 1000.0, "m",
+                "the vehicle's footprint about its position for the time to collision (half its length)")
         .numbers("region", &P::region, 0, -1e7, 1e7, "m", "operating region x0, y0, x1, y1, ... in local NED (empty disables)")
         .flag("bus_off_check", &P::bus_off_check, "CAN bus off is a fault")
         .flag("jet_check", &P::jet_check, "a waterjet not answering is a fault")
@@ -129,7 +131,11 @@ SupervisorConfig usvDefaults() {
   // A few samples' worth (GPS 10 Hz, LiDAR 10 Hz): long enough not to act on one late message, short enough
   // that the boat has moved a few metres at most.
   c.gps_timeout = 3.0, c.navigation_timeout = 3.0, c.lidar_timeout = 3.0, c.link_timeout = 10.0, c.command_timeout = 3.0;
-  c.allstop_ttc = 5.0;
+  // From cruise (1.6 m/s) the model stops in 6.3 m on full astern (4 s of cruise) and coasts 56 m and more on
+  // neutral jets (docs/safety.md): all-stop is a hold (DP brakes on the reversing buckets), 8 s before contact (the
+  // 4 s of a full-astern stop doubled for the DP's gentler braking and the LiDAR -> supervisor latency).
+  c.allstop_ttc = 8.0;
+  c.collision_radius = 4.0;  // half the 8 m hull: head on, the bow touches first
   c.region = {-1000, -1000, 1000, -1000, 1000, 1000, -1000, 1000};
   c.bus_off_check = c.jet_check = true;
   auto& r = c.rules;
@@ -138,7 +144,7 @@ SupervisorConfig usvDefaults() {
   r.link_timeout = rule(0.0, 5.0, "warn", true);  // the USV mission itself holds when its peer is lost
   r.command_timeout = rule(0.0, 2.0, "neutral", true);
   r.region = rule(1.0, 5.0, "hold", false);  // OpRegion: a breach latches until the operator resets
-  r.collision = rule(0.0, 3.0, "neutral", true);
+  r.collision = rule(0.0, 3.0, "hold", true);
   r.bus_off = rule(0.5, 2.0, "neutral", true);
   r.jet = rule(1.0, 2.0, "neutral", true);
   return c;

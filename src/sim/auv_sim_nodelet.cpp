@@ -61,7 +61,8 @@ class AuvSimNodelet : public nodelet::Nodelet {
       const std::string params = p.text("model_params", "");  // config/models/*.yaml (models module)
       if (!params.empty()) cfg.auv = models::loadAuvParams(params);
       base_frame_ = p.text("base_frame", "auv/base_link");
-      faults_ = std::make_unique<ros_util::FaultInjector>(nh, "auv", std::vector<std::string>{"sonar", "depth", "dvl"});
+      faults_ = std::make_unique<ros_util::FaultInjector>(nh, "auv",
+                                                          std::vector<std::string>{"sonar", "depth", "dvl", "nav"});
       cfg.faults = faults_->plan();
       sim_ = std::make_unique<sim::AuvSimulation>(scenario_, cfg);
     } catch (const ConfigError& e) {

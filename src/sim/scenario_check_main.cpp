@@ -2,7 +2,7 @@
 // simulator's strict loader plus the mission section) and, given the vehicles' configs, that they share its local
 // origin: the simulators place the world by the scenario's origin, the navigation by the vehicle's, so two origins
 // apart would put every target off by their distance. --faults checks a fault plan (offshore_gnc::FaultPlan) and
-// lists its faults with their vehicles. Prints a one-line JSON summary, or the error and exits 2.
+// lists its faults with their vehicles and the supervisor's rule that answers each. Prints a one-line JSON summary, or the error and exits 2.
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -77,11 +77,13 @@ int main(int argc, char** argv) {
     }
     std::string listed;
     for (const auto& f : faults.faults()) {
-      char one[160];
+      char one[224];
       char end[32] = "null";  // no end: to the end of the run
       if (std::isfinite(f.end)) std::snprintf(end, sizeof end, "%g", f.end);
-      std::snprintf(one, sizeof one, "%s{\"name\": \"%s\", \"vehicle\": \"%s\", \"start_s\": %g, \"end_s\": %s}",
-                    listed.empty() ? "" : ", ", f.name.c_str(), findFaultKind(f.name)->vehicle, f.start, end);
+      std::snprintf(one, sizeof one,
+                    "%s{\"name\": \"%s\", \"vehicle\": \"%s\", \"rule\": \"%s\", \"start_s\": %g, \"end_s\": %s}",
+                    listed.empty() ? "" : ", ", f.name.c_str(), findFaultKind(f.name)->vehicle,
+                    findFaultKind(f.name)->rule, f.start, end);
       listed += one;
     }
     std::printf("{\"scenario\": \"%s\", \"obstacles\": %zu, \"targets\": %zu, \"faults\": [%s], \"ok\": true}\n",

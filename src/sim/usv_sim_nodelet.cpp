@@ -2,6 +2,9 @@
 // publishes ground truth (metrics only), the GPS-compass (/usv_gps, /usv_heading), the LiDAR point cloud and
 // the scenario's map grid; takes /usv/joystick_cmd, with /usv/manual_cmd taking priority while it is fresh, or
 // with the CAN chain in the loop the per-jet set-points the emulated units act on (~jet_command_topic).
+// Without the CAN chain it also stands in for the CAN gateway's reports of the bus: each unit's status
+// (/usv/waterjet/status), whether it answers (/usv/waterjet/answering, latched) and the bus state
+// (/usv/can/bus_state, latched), on which the jet and bus_off faults show (docs/safety.md).
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/QuaternionStamped.h>
 #include <geometry_msgs/TwistStamped.h>
@@ -15,7 +18,9 @@
 #include <algorithm>
 #include <memory>
 
+#include "offshore_gnc/CanBusState.h"
 #include "offshore_gnc/JoystickCommand.h"
+#include "offshore_gnc/WaterjetAnswering.h"
 #include "offshore_gnc/WaterjetSetpoints.h"
 #include "offshore_gnc/WaterjetStatus.h"
 #include "offshore_gnc/ros/diagnostics.h"
@@ -63,7 +68,8 @@ class UsvSimNodelet : public nodelet::Nodelet {
       // /usv/waterjet/applied_setpoints behind the CAN gateway + emulator: the units already chose manual or autonomy
       jet_command_topic_ = p.text("jet_command_topic", "");
       base_frame_ = p.text("base_frame", "usv/base_link");
-      faults_ = std::make_unique<ros_util::FaultInjector>(nh, "usv", std::vector<std::string>{"gps", "lidar"});
+      faults_ = std::make_unique<ros_util::FaultInjector>(
+          nh, "usv", std::vector<std::string>{"gps", "lidar", "jet", "bus_off", "collision"});
       cfg.faults = faults_->plan();
       sim_ = std::make_unique<sim::UsvSimulation>(scenario_, cfg);
     } catch (const ConfigError& e) {
@@ -79,6 +85,10 @@ class UsvSimNodelet : public nodelet::Nodelet {
     lidar_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/usv/lidar/points", 2);
     map_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("/usv/map", 1, true);
     jet_pub_ = nh.advertise<WaterjetStatus>("/usv/waterjet/status", 10);
+    if (jet_command_topic_.empty()) {  // the gateway's reports; with the CAN chain in the loop the gateway's own
+      answering_pub_ = nh.advertise<WaterjetAnswering>("/usv/waterjet/answering", 1, true);
+      bus_pub_ = nh.advertise<CanBusState>("/usv/can/bus_state", 1, true);
+    }
     if (!jet_command_topic_.empty()) {
       auto_sub_ = nh.subscribe(jet_command_topic_, 10, &UsvSimNodelet::onJets, this);
     } else {
@@ -140,7 +150,10 @@ class UsvSimNodelet : public nodelet::Nodelet {
 
   double step() {
     const auto& out = sim_->step();
-    faults_->update(sim_->state().t);
+    // the collision fault is in effect once its obstacle is in the world (the first time under way in its window)
+    faults_->update(sim_->state().t, [this](const std::string& name) {
+      return name != "collision" || sim_->faultObstacle().has_value();
+    });
     const auto& s = sim_->state();
     const ros::Time stamp(s.t);
     if (++truth_count_ % 5 == 0) truth_pub_.publish(ros_util::toOdometry(s, "map", base_frame_));  // 20 Hz
@@ -172,18 +185,29 @@ class UsvSimNodelet : public nodelet::Nodelet {
       f.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
       gps_pub_.publish(f);
     }
-    if (out.gps) {  // the jets' state at the GPS rate (10 Hz), as the control units report it on the bus
-      const auto& p = sim_->model().params();
-      for (int i = 0; i < 2; ++i) {
-        const auto j = sim_->model().jet(i);
-        WaterjetStatus w;
-        w.header.stamp = stamp;
-        w.jet = static_cast<std::uint8_t>(i);
-        w.rpm = j.rpm;
-        w.nozzle_position = std::clamp(-j.nozzle / p.nozzle_max, -1.0, 1.0);  // P < 0 turns to starboard
-        w.bucket_position = j.bucket;
-        jet_pub_.publish(w);
-      }
+    const auto& p = sim_->model().params();
+    for (int i = 0; i < 2; ++i) {  // each unit's status frame, as the gateway decodes it
+      if (!out.jet_status[i]) continue;
+      const auto j = sim_->model().jet(i);
+      WaterjetStatus w;
+      w.header.stamp = stamp;
+      w.jet = static_cast<std::uint8_t>(i);
+      w.rpm = j.rpm;
+      w.nozzle_position = std::clamp(-j.nozzle / p.nozzle_max, -1.0, 1.0);  // P < 0 turns to starboard
+      w.bucket_position = j.bucket;
+      jet_pub_.publish(w);
+    }
+    if (out.gateway_changed && answering_pub_) {
+      const sim::GatewayReport& g = sim_->gateway();
+      WaterjetAnswering a;
+      a.header.stamp = stamp;
+      a.answering = {g.answering[0], g.answering[1]};
+      answering_pub_.publish(a);
+      CanBusState b;
+      b.header.stamp = stamp;
+      b.state = g.bus_off ? CanBusState::STATE_BUS_OFF : CanBusState::STATE_ERROR_ACTIVE;
+      b.state_name = g.bus_off ? "bus_off" : "error_active";
+      bus_pub_.publish(b);
     }
     if (out.lidar && lidar_pub_.getNumSubscribers() > 0) lidar_pub_.publish(cloudMessage(sim_->scan(), stamp));
     return s.t;
@@ -240,7 +264,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
   double manual_timeout_ = 1.0, last_manual_ = -1e9;
   unsigned long truth_count_ = 0;
   sim::PackedCloud packed_;
-  ros::Publisher jet_pub_, truth_pub_, gps_pub_, heading_pub_, vel_pub_, lidar_pub_, map_pub_;
+  ros::Publisher jet_pub_, answering_pub_, bus_pub_, truth_pub_, gps_pub_, heading_pub_, vel_pub_, lidar_pub_, map_pub_;
   ros::Subscriber auto_sub_, manual_sub_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;

@@ -175,3 +175,54 @@ def test_auv_navigation_error_and_usbl_fixes(tmp_path):
     assert m["auv_nav_source"] == "ins"
     assert m["auv_nav_rmse_m"] is None and m["auv_nav_max_m"] is None and m["auv_nav_samples"] == 0
     assert m["usbl_fixes_received"] == 1 and m["usbl_fixes_rejected"] == 1
+
+
+def test_fault_entries_carry_the_issues_keys_and_say_what_happened():
+    """report.fault_reports on hand-made recordings: a GPS outage answered by its rule (detection, the first neutral
+    command, the release), a phantom target refused by the USV mission on arrival, and a DVL outage no rule answers;
+    SafeStates for hold and surface from the true speed and depth."""
+    import rospy
+    from offshore_gnc.msg import FaultEvent, MissionStatus, SafetyState, Target
+
+    def stamped(m, t):
+        m.header.stamp = rospy.Time.from_sec(t)
+        return (t, m)
+
+    planned = [{"name": "gps", "vehicle": "usv", "rule": "gps_timeout", "start_s": 10.0, "end_s": 20.0},
+               {"name": "geofence", "vehicle": "both", "rule": "", "start_s": 30.0, "end_s": None,
+                "injected_s": 30.0, "target_ned": [5000.0, 0.0, 5.0]},
+               {"name": "dvl", "vehicle": "auv", "rule": "", "start_s": 5.0, "end_s": 8.0}]
+    events = {v: [stamped(FaultEvent(name=n, active=True), t0), stamped(FaultEvent(name=n, active=False), t1)]
+              for v, n, t0, t1 in (("usv", "gps", 10.0, 20.0), ("auv", "dvl", 5.0, 8.0))}
+    transitions = {"usv": [
+        stamped(SafetyState(active_rule="gps_timeout", active_rules=["gps_timeout"], action_name="neutral",
+                            reason="gps silent for 3.0 s (timeout 3.0 s)"), 13.05),
+        stamped(SafetyState(active_rule="gps_timeout", active_rules=[], action_name="none", reason="released"), 22.1)]}
+    safe = report.SafeStates({"usv": [(13.0, False), (13.1, True), (13.2, True)]},
+                             {"usv": [(40.0, 1.2), (41.0, 0.5), (42.0, 0.2)]}, {"auv": [(50.0, 3.0), (55.0, 0.4)]})
+    refused = "waiting for the AUV's target; refused a target: target 5.0 km from the origin is outside the region"
+    status = [stamped(MissionStatus(detail="waiting for the AUV's target"), 31.0),
+              stamped(MissionStatus(detail=refused), 32.5)]
+    phantom = Target()
+    phantom.origin.x = 5000.0
+    f = {r["name"]: r for r in report.fault_reports(planned, events, transitions, safe=safe, usv_status=status,
+                                                     usv_targets=[(32.4, phantom)])}
+    for r in f.values():
+        assert {"name", "injected_at_s", "detected_at_s", "action", "safe_state_at_s", "recovered_at_s",
+                "summary"} <= set(r), r
+    g = f["gps"]
+    assert (g["injected_at_s"], g["detected_at_s"], g["action"]) == (10.0, 13.05, "neutral")
+    assert (g["safe_state_at_s"], g["recovered_at_s"], g["ended_at_s"]) == (13.1, 22.1, 20.0)
+    assert g["summary"] == ("`gps` (USV) injected at 10.0 s, ended at 20.0 s: gps_timeout -> neutral after 3.05 s "
+                            "(gps silent for 3.0 s (timeout 3.0 s)); neutral actuators from 13.1 s; released at 22.1 s.")
+    fence = f["geofence"]
+    assert (fence["arrived_at_s"], fence["detected_at_s"], fence["action"]) == (32.4, 32.5, "refuse")
+    assert fence["reason"] == "target 5.0 km from the origin is outside the region"
+    assert fence["safe_state_at_s"] == 32.5 and fence["recovered_at_s"] is None
+    assert "nothing to recover" in fence["summary"]
+    d = f["dvl"]
+    assert d["detected_at_s"] is None and d["action"] is None and "no rule answered it" in d["summary"], d
+    assert safe.reached("usv", "hold", 40.0) == 42.0  # under 0.5 m/s
+    assert safe.reached("auv", "surface", 49.0) == 55.0  # under 0.5 m deep
+    assert safe.reached("usv", "surface", 13.0) == 13.1  # the USV's surface is neutral
+    assert safe.reached("usv", "warn", 7.0) == 7.0 and safe.reached("auv", "surface", 60.0) is None

@@ -88,6 +88,8 @@ struct GatewayOutputs {
   std::function<void(const jet::Command&)> manual;
   // Both jets' answering state (port, starboard): after the first tick and on every change.
   std::function<void(const std::array<bool, 2>&)> answering;
+  // The bus state: after the first tick and on every change (the safety supervisor's bus_off rule).
+  std::function<void(BusState)> bus_state;
 };
 
 class CanGateway {
@@ -116,6 +118,7 @@ class CanGateway {
   GatewayPolicy policy_;
   jet::CounterCheck counters_check_;
   std::optional<std::array<bool, 2>> reported_answering_;
+  std::optional<BusState> reported_state_;
   double next_tick_ = 0.0;
   mutable std::mutex mutex_;  // policy_ and bus_ state between the spinning thread and callers
 };

@@ -61,6 +61,7 @@ struct MissionResult {
   // came, and the 95th percentile distance from its hold point over the hold at the target (NaN without one).
   double usv_wait_drift_m = 0.0, usv_hold_p95_m = 0.0;
   double sim_time_s = 0.0, wall_time_s = 0.0;
+  std::vector<safety::Transition> usv_safety, auv_safety;  // each supervisor's activations and releases
   // The USV at 20 Hz, what a tuner looks at (mission_rosfree --out writes it as usv_trace.csv, kUsvTraceHeader):
   // truth, guidance's reference and cross-track, the joystick command, dynamic positioning's last step.
   std::vector<std::array<double, 19>> usv_trace;

@@ -4,7 +4,9 @@
 // the control loop and the mission, each the very class its nodelet runs, fed what the nodelet would be fed,
 // at the rate its timer or its sensor gives. The configuration comes from the same files the launch files load
 // (config/), read through the same parameter tables. Both vehicles on one clock make the ROS-free mission
-// (closed_loop/mission.h).
+// (closed_loop/mission.h). Each stack runs its safety supervisor as the SafetySupervisor nodelet does (the same
+// inputs, its decision overriding control), so a fault in the simulation's plan (sim config `faults`) is answered
+// here as in the ROS mission.
 #include <Eigen/Core>
 
 #include <deque>
@@ -21,6 +23,8 @@
 #include "offshore_gnc/navigation/pose_history.h"
 #include "offshore_gnc/perception/lidar_targets.h"
 #include "offshore_gnc/perception/sonar_targets.h"
+#include "offshore_gnc/safety/collision.h"
+#include "offshore_gnc/safety/supervisor.h"
 #include "offshore_gnc/sim/simulation.h"
 
 namespace offshore_gnc {
@@ -28,6 +32,24 @@ namespace closed_loop {
 
 // Steps of the simulation between two runs of a component at `rate_hz` (at least one).
 int stepsPer(double rate_hz, double dt);
+
+// One vehicle's supervisor as its nodelet runs it: fed by the stack, updated at its rate, its decision handed to
+// control (as the Control nodelet takes the SafetyState), every transition kept.
+class StackSupervisor {
+ public:
+  StackSupervisor(const safety::SupervisorConfig& cfg, double dt, double rate_hz = 10.0);
+  safety::Supervisor& core() { return sup_; }
+  // Every step: updates at the supervisor's rate and sets control's override.
+  void tick(long step, double t, control::ControlLoop& control);
+  const safety::Decision& decision() const { return decision_; }
+  const std::vector<safety::Transition>& transitions() const { return transitions_; }
+
+ private:
+  safety::Supervisor sup_;
+  int every_;
+  safety::Decision decision_;
+  std::vector<safety::Transition> transitions_;
+};
 
 // ------------------------------------------------------------------------------------------------- USV
 struct UsvStackConfig {
@@ -39,7 +61,8 @@ struct UsvStackConfig {
   guidance::GuidanceParams guidance;  // config/guidance/usv.yaml
   control::ControlLoopParams control; // config/control/usv.yaml
   mission::UsvMissionParams mission;  // config/mission/usv.yaml
-  std::vector<double> region;         // config/safety/usv.yaml: the supervisor's region, the mission's target check
+  // config/safety/usv.yaml: the supervisor; its region is also the mission's target check
+  safety::SupervisorConfig safety = safety::usvDefaults();
   double mission_period = 0.5;        // the mission nodelet's timer [s]
   bool mission_enabled = true;        // false: guidance follows setRoute()'s path (benchmarks, tests)
   bool use_truth = false;             // guidance and control on the true state (isolates the controller)
@@ -69,9 +92,11 @@ class UsvStack {
   const sim::UsvSimulation& simulation() const { return sim_; }
   const control::ActuatorCommand& command() const { return command_; }  // the last control step's
   const control::ControlLoop& control() const { return control_; }
+  const StackSupervisor& supervisor() const { return safety_; }
 
  private:
   void perceive(double t);
+  void checkCollision(double t);  // the time to collision and the safe side, as the nodelet computes them
 
   UsvStackConfig cfg_;
   sim::UsvSimulation sim_;
@@ -84,9 +109,11 @@ class UsvStack {
   std::deque<sim::LidarScan> scans_;  // frames waiting for the pose at their stamp
   sim::PackedCloud cloud_;
   std::vector<guidance::SbbObstacle> obstacles_;
+  std::vector<safety::SeenObstacle> seen_;  // the same, as the supervisor takes them
   std::optional<VehicleState> estimate_;
   guidance::GuidanceOutput last_;
   control::ActuatorCommand command_;
+  StackSupervisor safety_;
   bool guided_ = false;
   long step_ = 0;
   int guidance_every_, control_every_, mission_every_;
@@ -102,6 +129,9 @@ struct AuvStackConfig {
   guidance::GuidanceParams guidance;  // config/guidance/<model>.yaml
   control::ControlLoopParams control; // config/control/<model>.yaml
   mission::AuvMissionParams mission;  // config/mission/auv.yaml, the coverage from the scenario when it has one
+  // config/safety/auv.yaml, without the USBL timeout: the ROS-free AUV navigates on the simulator's INS-like
+  // estimate (auv.launch navigation:=ins), no USBL fix ever comes
+  safety::SupervisorConfig safety = safety::auvDefaults();
   double mission_period = 0.5;
   bool mission_enabled = true;
   bool use_truth = false;
@@ -113,8 +143,10 @@ class AuvStack {
  public:
   AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg);
   void step();
+  void onPeerAlive(double t) { safety_.core().heard(safety::Source::kLink, t); }  // the relay's link is up
   void setRoute(const std::vector<Eigen::Vector3d>& path) { guidance_.setPath(path); }  // without the mission
   const sim::AuvSimulation& simulation() const { return sim_; }
+  const StackSupervisor& supervisor() const { return safety_; }
 
   double time() const { return sim_.state().t; }
   const VehicleState& truth() const { return sim_.state(); }
@@ -142,6 +174,7 @@ class AuvStack {
   std::optional<VehicleState> estimate_;
   std::optional<Eigen::Vector3d> target_;
   guidance::GuidanceOutput last_;
+  StackSupervisor safety_;
   bool guided_ = false;
   long step_ = 0;
   int guidance_every_, control_every_, mission_every_;

@@ -3,7 +3,7 @@
 // [start, end) of simulated time, written "NAME@START[+DURATION]" and separated by commas or spaces, e.g.
 // "usbl@150+60, gps@200+10" (no duration: until the end of the run). The simulators ask `active(name, t)` at
 // their own simulated time, so an injection does not depend on how fast the run goes. The kinds below are the
-// one list of what can be injected, where, and what it does.
+// one list of what can be injected, where, what it does and which of the safety supervisor's rules answers it.
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -18,17 +18,38 @@ struct FaultKind {
   const char* name;
   const char* vehicle;  // the master whose simulator injects it; "both": the main job does, between the masters
   const char* effect;
+  const char* rule;     // the supervisor's rule that answers it (default presets); "": none (docs/safety.md says
+                        // what does: the navigation for dvl, the USV mission's region check for geofence)
 };
 
 inline const std::vector<FaultKind>& faultKinds() {
   static const std::vector<FaultKind> kinds{
-      {"gps", "usv", "the GPS-compass is silent (/usv_gps, /usv_heading, /usv/gps/velocity)"},
-      {"lidar", "usv", "the LiDAR is silent (/usv/lidar/points)"},
-      {"sonar", "auv", "the mechanical sonar is silent (/auv/sonar/beam)"},
-      {"depth", "auv", "the pressure sensor is silent (/auv/pressure)"},
-      {"dvl", "auv", "the DVL is silent (/auv/dvl; the Girona500's)"},
-      {"usbl", "auv", "the AUV's beacon does not reply: every USBL ping times out"},
-      {"link", "both", "the radio between the vehicles' relays is down (the main job's simulated radio)"},
+      {"gps", "usv", "the GPS-compass is silent (/usv_gps, /usv_heading, /usv/gps/velocity)", "gps_timeout"},
+      {"lidar", "usv", "the LiDAR is silent (/usv/lidar/points)", "lidar_timeout"},
+      {"jet", "usv",
+       "the port waterjet's control unit stops: its jet stops pushing and it no longer answers on the bus "
+       "(/usv/waterjet/answering)",
+       "jet"},
+      {"bus_off", "usv",
+       "the CAN bus goes bus-off: no frame crosses it (/usv/can/bus_state; the jets neither answer nor get "
+       "set-points and go neutral, the NMEA 2000 GPS-compass is silent)",
+       "bus_off"},
+      {"collision", "usv",
+       "a barge broadside across the USV's course appears ahead the first time the USV is under way in the fault's "
+       "window (sim::CollisionFault: 150 m long, 6 s ahead of its bow at its speed, from 0.8 m/s), gone at its end",
+       "collision"},
+      {"nav", "auv", "the AUV's AHRS, DVL and INS-like estimate are silent: its navigation has no estimate",
+       "navigation_timeout"},
+      {"sonar", "auv", "the mechanical sonar is silent (/auv/sonar/beam)", "sonar_timeout"},
+      {"depth", "auv", "the pressure sensor is silent (/auv/pressure)", "depth_timeout"},
+      {"dvl", "auv", "the DVL is silent (/auv/dvl; the Girona500's)", ""},
+      {"usbl", "auv", "the AUV's beacon does not reply: every USBL ping times out", "usbl_timeout"},
+      {"link", "both", "the radio between the vehicles' relays is down (the main job's simulated radio)",
+       "link_timeout"},
+      {"geofence", "both",
+       "a target 5 km north of the origin, outside the USV's operating region, is published on the AUV's /target "
+       "(the main job) and crosses the relay as a detection would",
+       ""},
   };
   return kinds;
 }
@@ -60,10 +81,12 @@ class FaultPlan {
     return plan;
   }
 
-  bool active(const std::string& name, double t) const {
+  bool active(const std::string& name, double t) const { return activeFault(name, t) != nullptr; }
+  // The first fault of that name active at t (nullptr: none).
+  const Fault* activeFault(const std::string& name, double t) const {
     for (const auto& f : faults_)
-      if (f.name == name && f.activeAt(t)) return true;
-    return false;
+      if (f.name == name && f.activeAt(t)) return &f;
+    return nullptr;
   }
   const std::vector<Fault>& faults() const { return faults_; }
   bool empty() const { return faults_.empty(); }

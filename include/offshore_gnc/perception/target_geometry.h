@@ -15,6 +15,7 @@ struct TargetGeometry {
   Eigen::Vector3d centroid{0, 0, 0};  // mean of the returns
   Eigen::Vector3d nearest{0, 0, 0};   // return closest to the sensor (horizontal distance)
   double length = 0.0;                // extent along first -> last [m]
+  Eigen::Vector3d axis{0, 0, 0};      // unit direction first -> last in the x-y plane (zero: no points)
   double width = 0.0;                 // extent across first -> last [m]
   double height = 0.0;                // z extent [m]
   double range = 0.0;                 // horizontal sensor -> nearest [m]
@@ -33,6 +34,7 @@ inline TargetGeometry transformed(const TargetGeometry& g, const Eigen::Isometry
   o.origin = T * g.origin;
   o.centroid = T * g.centroid;
   o.nearest = T * g.nearest;
+  o.axis = T.linear() * g.axis;
   return o;
 }
 

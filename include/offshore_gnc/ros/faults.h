@@ -7,6 +7,7 @@
 #include <ros/param.h>
 
 #include <algorithm>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,9 +32,11 @@ class FaultInjector {
   const FaultPlan& plan() const { return plan_; }
 
   // Publishes the starts and ends of this simulator's faults up to simulated time t; call once per step.
-  void update(double t) {
+  // `in_effect(name)`: whether a fault in its window has taken effect yet (the collision fault's obstacle appears
+  // only once the USV is under way); none: from the window's start.
+  void update(double t, const std::function<bool(const std::string&)>& in_effect = nullptr) {
     for (auto& o : own_) {
-      const bool on = o.fault.activeAt(t);
+      const bool on = o.fault.activeAt(t) && (!in_effect || in_effect(o.fault.name));
       if (on == o.on) continue;
       o.on = on;
       FaultEvent e;

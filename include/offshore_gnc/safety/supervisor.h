@@ -68,6 +68,7 @@ struct SupervisorConfig {
   double max_depth = 0.0;     // [m], positive down
   double min_altitude = 0.0;  // [m] above the bottom
   double allstop_ttc = 0.0;   // [s] all-stop when the time to collision is below this and no side is safe
+  double collision_radius = 4.0;  // [m] the vehicle's footprint about its position for the time to collision
   std::vector<double> region;  // operating region x0, y0, x1, y1, ... in local NED [m]; empty disables
   bool bus_off_check = false;  // the CAN bus-off rule
   bool jet_check = false;      // the waterjets-answering rule

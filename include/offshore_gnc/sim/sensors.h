@@ -97,6 +97,8 @@ class Lidar {
   Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed);
   // Scans the world from the vehicle's state (yaw only: the USV model is 3-DOF). Reuses `out`'s storage.
   void scan(const VehicleState& s, LidarScan& out);
+  // What it sees from the next scan on (an obstacle that appears: the collision fault).
+  void setWorld(const World& world) { world_ = world; }
   const LidarConfig& config() const { return cfg_; }
   int beams() const { return beams_; }
 

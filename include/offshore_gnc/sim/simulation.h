@@ -2,6 +2,7 @@
 // One vehicle's simulation: the models module's vehicle model + environment + the vehicle's sensors, each
 // sensor sampled at its own rate on a fixed simulation step. Shared by the simulator nodelets and the
 // benchmark (no ROS). Commands with NaN are rejected and counted by the models, never integrated.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <random>
@@ -11,10 +12,12 @@
 #include "offshore_gnc/common/faults.h"
 #include "offshore_gnc/models/auv.h"
 #include "offshore_gnc/models/environment.h"
+#include "offshore_gnc/models/joystick_allocation.h"
 #include "offshore_gnc/models/state.h"
 #include "offshore_gnc/models/usv.h"
 #include "offshore_gnc/sim/scenario.h"
 #include "offshore_gnc/sim/sensors.h"
+#include "offshore_gnc/sim/world.h"
 
 namespace offshore_gnc {
 namespace sim {
@@ -32,6 +35,25 @@ Eigen::VectorXd mixToThrusters(const Eigen::MatrixXd& tcm, const AuvCommand& c);
 // Environment of a scenario: its current plus optional wind and waves.
 models::EnvironmentParams environmentOf(const Scenario& sc);
 
+// The obstacle of the `collision` fault: a barge broadside across the USV's course, appearing the first time the
+// USV moves at `min_speed` or more within the fault's window where its bow (half its length ahead) reaches it in
+// `time_ahead` at that speed, and gone at the window's end. Its face is wider than the LiDAR sees at that distance
+// (its returns grow sparse towards the ends: perception made it 70 m long from 10 m), and the safety box of that
+// extent reaches past the USV: no side is left to go round it.
+struct CollisionFault {
+  double time_ahead = 6.0;  // [s] under the supervisor's allstop_ttc (8 s)
+  double length = 150.0, width = 10.0, height = 3.0;  // [m]
+  double min_speed = 0.8;   // under way: speed over ground [m/s]
+};
+
+// What the CAN gateway reports of the bus (on the vessel; simulated here, where there is no bus): the bus state
+// and whether each waterjet's control unit answers (a status frame within the gateway's jet_timeout).
+struct GatewayReport {
+  bool bus_off = false;
+  std::array<bool, 2> answering{true, true};  // port, starboard
+  bool operator!=(const GatewayReport& o) const { return bus_off != o.bus_off || answering != o.answering; }
+};
+
 class UsvSimulation {
  public:
   struct Config {
@@ -41,31 +63,58 @@ class UsvSimulation {
     GpsCompassConfig gps;
     LidarConfig lidar;
     models::UsvParams usv;
-    FaultPlan faults;  // "gps" and "lidar" silence those sensors while active
+    // "gps" and "lidar" silence those sensors while active; "jet" stops the port jet's unit, "bus_off" the bus
+    // (both units then run idle with the bucket neutral, the GPS-compass on the bus is silent); "collision" shows
+    // the CollisionFault obstacle to the LiDAR.
+    FaultPlan faults;
+    double jet_status_rate_hz = 10.0;  // the units' status frames
+    double jet_timeout = 0.5;          // the gateway's (config/can/usv.yaml): a unit silent this long is not answering
+    CollisionFault collision;
   };
   struct Outputs {
     std::optional<GpsCompassReading> gps;
     bool lidar = false;  // scan() holds a new frame
+    std::array<bool, 2> jet_status{false, false};  // unit i sent its status (jet(i)) this step
+    bool gateway_changed = false;  // gateway() changed this step (and on the first step)
   };
   UsvSimulation(const Scenario& sc, const Config& cfg);
-  bool setCommand(const models::UsvCommand& c);  // false (and counted by the model) when rejected
+  // Both validate (NaN: false, counted by the model) and reach the jets unless a fault stops them.
+  bool setCommand(const models::UsvCommand& c);
   bool setJetCommands(const models::JetCommands& c);  // per-jet set-points (twin propulsion), as setCommand
   const Outputs& step();
   const VehicleState& state() const { return model_.state(); }
   const models::UsvModel& model() const { return model_; }
   const LidarScan& scan() const { return scan_; }
+  const GatewayReport& gateway() const { return gateway_; }
+  // The collision fault's obstacle while it is in the world.
+  const std::optional<Vessel>& faultObstacle() const { return obstacle_; }
   const Counters& counters() const { return model_.counters(); }
   double dt() const { return cfg_.dt; }
 
  private:
+  void updateFaults(double t);
+  void applyStops();  // the stopped units' set-points over the last command
+
   Config cfg_;
+  World world_;
   models::Environment env_;
   models::UsvModel model_;
   GpsCompass gps_;
   Lidar lidar_;
   LidarScan scan_;
   Outputs out_;
-  long step_ = 0, gps_every_, lidar_every_;
+  long step_ = 0, gps_every_, lidar_every_, status_every_;
+  // faults on the propulsion: units stopped (port, starboard) and since when [s]
+  std::array<bool, 2> stopped_{false, false};
+  std::array<double, 2> stopped_since_{0.0, 0.0};
+  std::optional<models::JoystickAllocation> allocation_;  // twin propulsion: the model's own, for stopped units
+  bool from_joystick_ = true;                              // the last command was a joystick one (else per jet)
+  models::UsvCommand last_command_;
+  models::JetCommands last_jets_{};
+  GatewayReport gateway_;
+  bool gateway_reported_ = false;
+  std::optional<Vessel> obstacle_;
+  double obstacle_window_ = -1.0;  // start of the collision window it appeared in (once per window)
 };
 
 class AuvSimulation {
@@ -81,7 +130,9 @@ class AuvSimulation {
     InsConfig ins;
     double odom_rate_hz = 20.0;
     models::AuvParams auv = models::AuvParams::girona500();
-    FaultPlan faults;  // "sonar", "depth" and "dvl" silence those sensors while active
+    // "sonar", "depth" and "dvl" silence those sensors while active; "nav" the AHRS, the DVL and the INS-like
+    // estimate (the navigation's own inputs: without a heading it has no estimate either)
+    FaultPlan faults;
   };
   struct Outputs {
     std::optional<AhrsReading> ahrs;

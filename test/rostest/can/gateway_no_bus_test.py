@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""CanGateway without its interface: diagnostics say the bus is down, bad commands are counted, the jets (never
-heard) are reported not answering, no crash."""
+"""CanGateway without its interface: diagnostics and the latched bus state say the bus is down, bad commands are
+counted, the jets (never heard) are reported not answering, no crash."""
 import math
 import time
 import unittest
@@ -8,7 +8,7 @@ import unittest
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
-from offshore_gnc.msg import JoystickCommand, WaterjetAnswering
+from offshore_gnc.msg import CanBusState, JoystickCommand, WaterjetAnswering
 
 
 class GatewayNoBus(unittest.TestCase):
@@ -20,6 +20,9 @@ class GatewayNoBus(unittest.TestCase):
         cls.sub = rospy.Subscriber("/diagnostics", DiagnosticArray, cls.on_diag)
         cls.answering_sub = rospy.Subscriber("/usv/waterjet/answering", WaterjetAnswering,
                                              lambda m: cls.answering.append(list(m.answering)))
+        cls.bus_states = []
+        cls.bus_sub = rospy.Subscriber("/usv/can/bus_state", CanBusState,
+                                       lambda m: cls.bus_states.append((m.state, m.state_name)))
         cls.pub = rospy.Publisher("/usv/joystick_cmd", JoystickCommand, queue_size=10)
 
     @classmethod
@@ -61,6 +64,10 @@ class GatewayNoBus(unittest.TestCase):
         while time.time() < end and [False, False] not in self.answering:
             time.sleep(0.05)
         self.assertIn([False, False], self.answering, "latched /usv/waterjet/answering: %s" % self.answering)
+        # the safety supervisor's bus_off rule takes a bus that is down as off
+        while time.time() < end and not self.bus_states:
+            time.sleep(0.05)
+        self.assertEqual(self.bus_states[:1], [(CanBusState.STATE_DOWN, "down")], "latched /usv/can/bus_state")
 
 
 if __name__ == "__main__":

@@ -34,6 +34,7 @@ struct Rig {
   GatewayOutputs out;
   int manual_seen = 0;
   std::vector<std::pair<double, std::array<bool, 2>>> answering;  // what the gateway reported, when
+  std::vector<std::pair<double, BusState>> bus_states;             // ditto
   std::size_t delivered = 0;  // frames of bus.sent the units have seen
   int statuses = 0;           // status rounds so far (the k-th at 0.1 k s)
   std::array<double, 2> last_status{{-1.0, -1.0}};  // when each unit last answered
@@ -47,6 +48,7 @@ struct Rig {
     gw = std::make_unique<CanGateway>(std::make_unique<ScriptedBus>(bus), cfg, jets(), counters, [this] { return bus.now; });
     out.manual = [this](const jet::Command&) { ++manual_seen; };
     out.answering = [this](const std::array<bool, 2>& a) { answering.emplace_back(bus.now, a); };
+    out.bus_state = [this](BusState st) { bus_states.emplace_back(bus.now, st); };
   }
   void runUntil(double t) {
     while (bus.now < t) {
@@ -373,4 +375,12 @@ TEST(CanGatewayOnAScriptedBus, BusOffDropsCommandsInsteadOfQueueingABurst) {
   const std::size_t after = r.bus.sent.size();
   EXPECT_GE(after - before, 16u);
   EXPECT_LE(after - before, 22u) << "commands held during bus-off were sent in a burst";
+  // reported (for the safety supervisor's bus_off rule): at the first tick, then each change within a period
+  ASSERT_EQ(r.bus_states.size(), 3u);
+  EXPECT_EQ(r.bus_states[0].second, BusState::kErrorActive);
+  EXPECT_LE(r.bus_states[0].first, r.cfg.period());
+  EXPECT_EQ(r.bus_states[1].second, BusState::kBusOff);
+  EXPECT_NEAR(r.bus_states[1].first, 1.0, r.cfg.period() + 0.011);
+  EXPECT_EQ(r.bus_states[2].second, BusState::kErrorActive);
+  EXPECT_NEAR(r.bus_states[2].first, 2.0, r.cfg.period() + 0.011);
 }

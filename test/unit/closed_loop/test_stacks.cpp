@@ -6,8 +6,9 @@
 #include <fstream>
 
 #include "offshore_gnc/closed_loop/mission.h"
-#include "offshore_gnc/control/vehicle_control.h"
+#include "offshore_gnc/common/faults.h"
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/control/vehicle_control.h"
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::closed_loop;
@@ -69,6 +70,59 @@ TEST(RosFreeMission, TheDefaultMissionSucceedsInOneProcess) {
   EXPECT_LT(r.usv_wait_drift_m, 8.0);
   EXPECT_LT(r.usv_hold_p95_m, 8.0);
   EXPECT_GE(r.sim_time_s, r.detection_time_s + cfg.hold_time);  // held at the target before success
+  // the supervisors ran and never acted: no false alarm (the buoy on the path has a safe side)
+  EXPECT_TRUE(r.usv_safety.empty()) << r.usv_safety.front().rule << ": " << r.usv_safety.front().reason;
+  EXPECT_TRUE(r.auv_safety.empty()) << r.auv_safety.front().rule << ": " << r.auv_safety.front().reason;
+}
+
+// The supervisors in the ROS-free stacks answer the simulators' faults as in the ROS mission (docs/safety.md):
+// the rule at its detection time (plus one supervisor period), its action reaching control, and the release.
+TEST(RosFreeStacks, TheSupervisorsAnswerTheSimulatorsFaults) {
+  const sim::Scenario sc = sim::loadScenario("config/scenarios/pyhajarvi.yaml");
+  auto activation = [](const std::vector<safety::Transition>& log, const std::string& rule, bool active) {
+    for (const auto& tr : log)
+      if (tr.rule == rule && tr.to_active == active) return tr.t;
+    return -1.0;
+  };
+  UsvStackConfig u = loadUsvStack("config");
+  u.sim.faults = FaultPlan::parse("gps@20+10 jet@40+5");
+  UsvStack usv(sc, u);
+  control::SafetyOverride at_25 = control::SafetyOverride::kNone, at_43 = at_25;
+  while (usv.time() < 55.0) {
+    usv.step();
+    usv.onPeerAlive(usv.time());
+    if (std::abs(usv.time() - 25.0) < 1e-6) at_25 = usv.control().safety();
+    if (std::abs(usv.time() - 43.0) < 1e-6) at_43 = usv.control().safety();
+  }
+  const auto& log = usv.supervisor().transitions();
+  // gps: 3 s after the last fix (10 Hz); navigation goes with it (its only source)
+  EXPECT_NEAR(activation(log, "gps_timeout", true), 23.0, 0.11);
+  EXPECT_NEAR(activation(log, "navigation_timeout", true), 23.0, 0.11);
+  EXPECT_EQ(at_25, control::SafetyOverride::kNeutral);
+  EXPECT_GT(activation(log, "gps_timeout", false), 32.0 - 0.01);  // released 2 s after the fixes are back
+  // jet: the gateway's jet_timeout 0.5 s, then the rule's 1 s
+  EXPECT_NEAR(activation(log, "jet", true), 41.5, 0.11);
+  EXPECT_EQ(at_43, control::SafetyOverride::kNeutral);
+  EXPECT_GT(activation(log, "jet", false), 47.0 - 0.01);
+
+  AuvStackConfig a = loadAuvStack("config", "girona500", "config/scenarios/pyhajarvi.yaml");
+  a.sim.faults = FaultPlan::parse("nav@20+10");
+  AuvStack auv(sc, a);
+  safety::Action auv_at_25 = safety::Action::kNone;
+  double depth_at_23 = NAN, shallowest = INFINITY;
+  while (auv.time() < 40.0) {
+    auv.step();
+    auv.onPeerAlive(auv.time());
+    const double t = auv.time();
+    if (std::abs(t - 25.0) < 1e-6) auv_at_25 = auv.supervisor().decision().action;
+    if (std::abs(t - 23.0) < 1e-6) depth_at_23 = auv.truth().position.z();
+    if (t > 23.0 && t < 35.0) shallowest = std::min(shallowest, auv.truth().position.z());
+  }
+  // navigation: 3 s after the last estimate (20 Hz)
+  EXPECT_NEAR(activation(auv.supervisor().transitions(), "navigation_timeout", true), 23.0, 0.11);
+  EXPECT_EQ(auv_at_25, safety::Action::kSurface);
+  EXPECT_GT(activation(auv.supervisor().transitions(), "navigation_timeout", false), 35.0 - 0.01);
+  EXPECT_LT(shallowest, depth_at_23 - 1.0) << depth_at_23;  // it rose while surfacing
 }
 
 TEST(RosFreeMission, TheAcolorFollowsItsLawnmowerAndFindsTheTarget) {

@@ -190,3 +190,22 @@ TEST(LidarTargets, BadConfigNamesTheParameter) {
     EXPECT_NE(std::string(e.what()).find("gap"), std::string::npos);
   }
 }
+
+// The length's axis (first -> last return) is what the safety supervisor's time to collision lays the target
+// along: a face seen obliquely keeps its direction, and the axis turns with the frame the target is moved into.
+TEST(TargetGeometry, AxisRunsFromTheFirstToTheLastReturnAndTurnsWithTheFrame) {
+  std::vector<Eigen::Vector3d> face;  // a straight face from (10, -4) to (14, 6), seen from the origin
+  for (int i = 0; i <= 40; ++i) face.emplace_back(10.0 + 0.1 * i, -4.0 + 0.25 * i, 0.0);
+  const TargetGeometry g = describeTarget(face, Eigen::Vector3d::Zero());
+  const Eigen::Vector3d along = Eigen::Vector3d(4.0, 10.0, 0.0).normalized();
+  EXPECT_NEAR(std::abs(g.axis.dot(along)), 1.0, 1e-9);  // along the face, whichever end came first
+  EXPECT_NEAR(g.axis.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(g.length, std::hypot(4.0, 10.0), 1e-9);
+  EXPECT_NEAR(g.width, 0.0, 1e-9);
+  const Eigen::Isometry3d T =
+      Eigen::Translation3d(100.0, 50.0, 0.0) * Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ());
+  const TargetGeometry m = transformed(g, T);
+  EXPECT_NEAR((m.axis - T.linear() * g.axis).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(m.axis.x(), -g.axis.y(), 1e-12);  // a quarter turn
+  EXPECT_TRUE(describeTarget({}, Eigen::Vector3d::Zero()).axis.isZero());  // no points: unknown
+}

@@ -438,3 +438,120 @@ TEST(Faults, TheSimulationsSilenceEachSensorOnlyWhileItsFaultLasts) {
   EXPECT_GT(depth_back, 0);
   EXPECT_GT(dvl_back, 0);
 }
+
+// The propulsion faults as the CAN gateway would see them (there is no bus in simulation): the port unit stops
+// (its jet idles with the bucket neutral, its status frames stop, it is reported not answering after the gateway's
+// jet_timeout), or the bus goes off (both units stop, the NMEA 2000 GPS-compass is silent, the bus state says so
+// at once); the last command reaches the jets again when the fault ends.
+TEST(Faults, AStoppedUnitOrABusOffStopsItsJetsAndIsReportedAsTheGatewayWould) {
+  const Scenario sc;
+  UsvSimulation::Config cfg;
+  cfg.faults = FaultPlan::parse("jet@5+5 bus_off@15+5");
+  UsvSimulation usv(sc, cfg);
+  ASSERT_TRUE(usv.setCommand({0.5, 0.0, 0.0}));
+  int reports = 0, port_status_in = 0, gps_in = 0, starboard_status = 0;
+  double port_silent_at = NAN, port_back_at = NAN, bus_off_at = NAN, bus_on_at = NAN;
+  for (int i = 0; i < 2500; ++i) {  // 25 s
+    const auto& o = usv.step();
+    const double t = usv.state().t;
+    const GatewayReport& g = usv.gateway();
+    if (o.gateway_changed) {
+      ++reports;
+      if (!g.answering[0] && std::isnan(port_silent_at)) port_silent_at = t;
+      if (g.answering[0] && !std::isnan(port_silent_at) && std::isnan(port_back_at)) port_back_at = t;
+      if (g.bus_off && std::isnan(bus_off_at)) bus_off_at = t;
+      if (!g.bus_off && !std::isnan(bus_off_at) && std::isnan(bus_on_at)) bus_on_at = t;
+    }
+    const bool jet_f = t >= 5.0 && t < 10.0, bus_f = t >= 15.0 && t < 20.0;
+    port_status_in += (jet_f || bus_f) && o.jet_status[0];
+    starboard_status += !bus_f && o.jet_status[1];
+    gps_in += bus_f && o.gps.has_value();
+    if (std::abs(t - 9.99) < 1e-6) {  // the port jet has idled, its bucket neutral; the starboard one pushes on
+      EXPECT_NEAR(usv.model().jet(0).rpm, cfg.usv.rpm_min, 50.0);
+      EXPECT_NEAR(usv.model().jet(0).bucket, 0.0, 1e-9);
+      EXPECT_GT(usv.model().jet(1).rpm, cfg.usv.rpm_min + 200.0);
+      EXPECT_GT(usv.model().jet(1).bucket, 0.5);
+    }
+    if (std::abs(t - 19.99) < 1e-6) {  // both idle
+      for (int j = 0; j < 2; ++j) EXPECT_NEAR(usv.model().jet(j).bucket, 0.0, 1e-9) << j;
+    }
+  }
+  EXPECT_NEAR(port_silent_at, 5.0 + cfg.jet_timeout, 0.011);
+  EXPECT_NEAR(port_back_at, 10.0, 0.011);
+  EXPECT_NEAR(bus_off_at, 15.0, 0.011);
+  EXPECT_NEAR(bus_on_at, 20.0, 0.011);
+  EXPECT_EQ(reports, 1 + 2 + 3);  // the first step; port silent, back; bus off, both silent, bus on (both answer)
+  EXPECT_EQ(port_status_in, 0);
+  EXPECT_EQ(gps_in, 0);
+  EXPECT_GT(starboard_status, 150);  // 10 Hz outside the bus-off
+  // the last command reaches both jets again
+  EXPECT_GT(usv.model().jet(0).rpm, cfg.usv.rpm_min + 200.0);
+  EXPECT_NEAR(usv.model().jet(0).bucket, usv.model().jet(1).bucket, 1e-9);
+}
+
+// The collision fault: nothing while the USV is still, then a barge broadside across its course, where its bow
+// reaches it in the configured time at its speed, the first time it is under way in the window; gone at the end.
+TEST(Faults, TheCollisionObstacleAppearsAheadOnceUnderWayAndGoesAtTheEnd) {
+  const Scenario sc;  // open water, heading north
+  UsvSimulation::Config cfg;
+  cfg.lidar.range_sigma = 0.0;
+  cfg.faults = FaultPlan::parse("collision@2+40");
+  UsvSimulation usv(sc, cfg);
+  double appeared = NAN, gone = NAN;
+  for (int i = 0; i < 5000 && std::isnan(gone); ++i) {
+    if (i == 500) {
+      ASSERT_TRUE(usv.setCommand({1.0, 0.0, 0.0}));  // still for 5 s, then full ahead
+    }
+    usv.step();
+    const double t = usv.state().t;
+    if (usv.faultObstacle() && std::isnan(appeared)) {
+      appeared = t;
+      const double speed = usv.state().velocity.head<2>().norm();
+      EXPECT_GE(speed, cfg.collision.min_speed);
+      EXPECT_LT(speed, cfg.collision.min_speed + 0.05);  // at the first moment under way
+      const Vessel& b = *usv.faultObstacle();
+      EXPECT_NEAR(std::abs(std::sin(b.yaw - usv.state().yaw)), 1.0, 0.02);  // broadside across the course
+      const double face = cfg.usv.length / 2 + speed * cfg.collision.time_ahead;  // 4 + 6 x 0.8 m
+      EXPECT_NEAR((b.centre - usv.state().position.head<2>()).norm(), face + b.width / 2, 1e-6);
+    }
+    if (!usv.faultObstacle() && !std::isnan(appeared)) gone = t;
+  }
+  ASSERT_FALSE(std::isnan(appeared));
+  EXPECT_GT(appeared, 5.0);
+  EXPECT_NEAR(gone, 42.0, 0.011);
+
+  // the LiDAR sees it ahead at that distance while it is there, and not before or after
+  UsvSimulation::Config still = cfg;
+  still.collision.min_speed = 0.0;  // "under way" from the start: there at once, at the bow
+  UsvSimulation seen(sc, still);
+  float ahead = NAN;
+  for (int i = 0; i < 300 && std::isnan(ahead); ++i)
+    if (seen.step().lidar && seen.state().t > 2.0) ahead = rangeAt(seen.scan(), 1, 0.0);  // level layer, dead ahead
+  EXPECT_NEAR(ahead, cfg.usv.length / 2 - cfg.lidar.mount.x(), 0.05);
+  UsvSimulation before(sc, still);
+  float nothing = 0.0f;
+  for (int i = 0; i < 150; ++i)
+    if (before.step().lidar) nothing = rangeAt(before.scan(), 1, 0.0);
+  EXPECT_TRUE(std::isnan(nothing));  // before its window: open water
+}
+
+// The nav fault silences the navigation's own inputs: the AHRS, the DVL and the INS-like estimate.
+TEST(Faults, TheNavFaultSilencesTheAhrsTheDvlAndTheEstimate) {
+  const Scenario sc;
+  AuvSimulation::Config cfg;
+  cfg.faults = FaultPlan::parse("nav@2+2");
+  AuvSimulation auv(sc, cfg);
+  int in = 0, ahrs_out = 0, dvl_out = 0, odom_out = 0, depth_in = 0;
+  for (int i = 0; i < 600; ++i) {
+    const auto& o = auv.step();
+    const double t = auv.state().t;
+    const bool f = t >= 2.0 && t < 4.0;
+    if (f) in += o.ahrs.has_value() + o.dvl.has_value() + o.odom.has_value(), depth_in += o.depth.has_value();
+    else ahrs_out += o.ahrs.has_value(), dvl_out += o.dvl.has_value(), odom_out += o.odom.has_value();
+  }
+  EXPECT_EQ(in, 0);
+  EXPECT_GT(depth_in, 0);  // the depth sensor is not the navigation's: it goes on
+  EXPECT_GT(ahrs_out, 0);
+  EXPECT_GT(dvl_out, 0);
+  EXPECT_GT(odom_out, 0);
+}
