@@ -126,6 +126,8 @@ class Monitor:
         cmd = [sys.executable, os.path.join(HERE, "status_monitor.py"), vehicle]
         if lockstep:
             cmd += ["--step-topic", "/%s_sim/sim/step" % vehicle]
+            for t in STACK_PACE[vehicle]:
+                cmd += ["--pace", t]
         for t in echo:
             cmd += ["--echo", t]
         for t in publish:
@@ -208,6 +210,10 @@ class AcousticChannel:
 STACK_TOPICS = {"usv": ["/usv/odom", "/usv/guidance/status", "/usv/joystick_cmd", "/usv/mission/status"],
                 "auv": ["/auv/guidance/status", "/auv/mission/status"]}
 STACK_READY_S = 60.0
+# In lockstep the clock also waits for these (stamped) outputs of each stack: its navigation and its controller's
+# command (status_monitor.Pace). Those of another vehicle model never publish and are not waited for.
+STACK_PACE = {"usv": ["/usv/odom", "/usv/joystick_cmd"],
+              "auv": ["/auv/odom", "/auv/thruster_setpoints", "/auv/rc_channels"]}
 
 
 class SharedClock:
@@ -472,6 +478,10 @@ def run(a):
         print(fmt_progress(u, av), flush=True)
         if channel:
             print("[mission] acoustic channel (USV truth to the AUV master): " + channel.summary(), flush=True)
+        if clock:
+            print("[mission] shared clock: times let go before a stack's navigation and controller got there "
+                  "(status_monitor.Pace): " + ", ".join("%s %s" % (v, mons[v].last.get("pace_waits", "?")) for v in mons),
+                  flush=True)
         if radio:
             print("[mission] simulated radio: " + radio.summary(), flush=True)
             radio.close()

@@ -2,8 +2,8 @@
 """One vehicle's master, seen from the main job: mission status as JSON lines, the co-simulation clock, and
 topics carried between the masters by the simulated acoustic channel.
 
-    status_monitor.py VEHICLE [--step-topic /usv_sim/sim/step] [--echo TOPIC ...] [--echo-rate HZ]
-                              [--publish TOPIC ...]
+    status_monitor.py VEHICLE [--step-topic /usv_sim/sim/step] [--pace TOPIC ...] [--echo TOPIC ...]
+                              [--echo-rate HZ] [--publish TOPIC ...]
 
 Prints one JSON line per mission-status change and a heartbeat every wall second (phase, distance to go,
 simulated time). With --step-topic the vehicle's simulator runs in lockstep and this process is its clock
@@ -11,6 +11,10 @@ hand: each line read on stdin is a simulated time to reach; it publishes the ste
 them at its rate) and, once /clock got there, prints a line with "reached". The job drives both vehicles'
 monitors to the same times, so the two masters share one time base although each has its own simulator and
 /clock (rospy binds a process to one master).
+
+--pace TOPIC (repeatable; stamped messages: the vehicle's navigation output and its controller's command) holds a
+target back until those topics' stamps got there too (class Pace), so the stack, not only its simulator, keeps up
+with the shared clock.
 
 --echo TOPIC (repeatable) subscribes the topic on this master, whatever its type, and prints each message as one
 JSON line {"echo": TOPIC, "type": "pkg/Type", "msg": {field: value, ...}} (times as {"secs", "nsecs"}, exact), at
@@ -24,7 +28,9 @@ status lines) and ignored.
 """
 import argparse
 import collections
+import functools
 import json
+import struct
 import sys
 import threading
 import time
@@ -146,6 +152,32 @@ class Republisher:
             self.bad_lines += 1
 
 
+class Pace:
+    """Lockstep for the stack, not only its simulator. A target time counts as reached once each paced topic's
+    latest stamp is within LAG of it: at the job's speed-up a callback a few hundred wall milliseconds late
+    (the CPU shared by both stacks) was seconds of simulated time, long enough for the navigation to count as
+    stale and the AUV's supervisor to surface it, and for the USV's DP to act on old feedback and circle. A topic
+    silent for SILENT simulated seconds is not waited for (a fault or a dead node stopped it, it is not late) until
+    it publishes again, and no target is held longer than WAIT wall seconds (counted in `waits`)."""
+    LAG, SILENT, WAIT = 0.3, 2.0, 0.3
+
+    def __init__(self, topics):
+        self.stamps = {t: None for t in topics}  # None: not published yet, nothing to wait for
+        self.waits = 0
+        self.subs = [rospy.Subscriber(t, rospy.AnyMsg, functools.partial(self.on_msg, t), queue_size=10)
+                     for t in topics]
+
+    def on_msg(self, topic, raw):
+        try:  # std_msgs/Header is the first field of every paced type: seq, stamp.secs, stamp.nsecs
+            _, secs, nsecs = struct.unpack_from("<3I", raw._buff)
+        except struct.error:
+            return
+        self.stamps[topic] = secs + nsecs * 1e-9
+
+    def caught_up(self, target, now):
+        return all(s is None or s >= target - self.LAG or now - s > self.SILENT for s in self.stamps.values())
+
+
 def read_stdin(on_time, republisher):
     """The job's lines: a number is a simulated time for the clock hand, a JSON object an echo line to publish."""
     for line in sys.stdin:
@@ -172,10 +204,11 @@ def read_stdin(on_time, republisher):
             on_time(target)
 
 
-def clock_hand(step_topic, snapshot):
+def clock_hand(step_topic, snapshot, pace):
     """Publishes the simulator steps for each target time at once (the job keeps up to two rounds granted, so the
     simulator never idles between them); reports each target once /clock got there. Returns the function that
-    takes a target time (read_stdin calls it)."""
+    takes a target time (read_stdin calls it). `pace` (a Pace or None) holds a report back until the stack has
+    caught up."""
     dt = float(rospy.get_param(step_topic.rsplit("/sim/step", 1)[0] + "/dt", 0.01))
     pub = rospy.Publisher(step_topic, UInt32, queue_size=100)
     while pub.get_num_connections() == 0 and not rospy.is_shutdown():  # the first steps must not be lost
@@ -183,11 +216,19 @@ def clock_hand(step_topic, snapshot):
     granted = collections.deque()
     lock = threading.Lock()
 
+    held = [None]  # wall time since which the first granted target waits for the stack
+
     def report():
         while not rospy.is_shutdown():
             with lock:
                 done = []
                 while granted and rospy.get_time() >= granted[0][1] - dt / 2:
+                    if pace and not pace.caught_up(granted[0][1], rospy.get_time()):
+                        held[0] = held[0] or time.monotonic()
+                        if time.monotonic() - held[0] < Pace.WAIT:
+                            break
+                        pace.waits += 1
+                    held[0] = None
                     done.append(granted.popleft()[0])
             for target in done:
                 emit(dict(snapshot(), reached=target))
@@ -210,6 +251,8 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("vehicle")
     ap.add_argument("--step-topic", default=None)
+    ap.add_argument("--pace", action="append", default=[], metavar="TOPIC",
+                    help="with --step-topic: a target is reached once this stamped topic got there too (repeatable)")
     ap.add_argument("--echo", action="append", default=[], metavar="TOPIC",
                     help="print this topic's messages as JSON lines (repeatable)")
     ap.add_argument("--echo-rate", type=float, default=10.0, help="at most this many lines per echoed topic [Hz]")
@@ -224,12 +267,15 @@ def main():
     last = {}
 
     republisher = Republisher(a.publish) if a.publish else None
+    pace = Pace(a.pace) if a.step_topic and a.pace else None
 
     def snapshot():
         out = dict(last) if last else {"vehicle": a.vehicle, "phase": "STARTING"}
         out["sim_time"] = rospy.get_time()
         if republisher:
             out.update(republished=republisher.published, bad_lines=republisher.bad_lines)
+        if pace:
+            out["pace_waits"] = pace.waits
         return out
 
     def on_status(m):
@@ -244,7 +290,7 @@ def main():
     echoes = [Echo(topic, a.echo_rate) for topic in a.echo]  # noqa: F841 (kept: their subscribers)
 
     def stdin_loop():
-        on_time = clock_hand(a.step_topic, snapshot) if a.step_topic else None
+        on_time = clock_hand(a.step_topic, snapshot, pace) if a.step_topic else None
         read_stdin(on_time, republisher)
 
     if a.step_topic or republisher:

@@ -14,8 +14,12 @@ JOB = os.path.join(REPO, "python", "offshore_gnc", "mission_job.py")
 MAX_TARGET_ERROR_M = 2.0
 MIN_CLEARANCE_M = 0.0
 MIN_PIXELS = 30  # of each colour in rviz's 3-D view (the job's Screenshots.MIN_PIXELS)
-MAX_WAIT_DRIFT_M = 8.0  # the USV waiting for the target (issue 15's goal: 3 m)
-MAX_HOLD_P95_M = 8.0  # the USV holding at the target (issue 15's goal: 1 m)
+# The USV's twin-jet DP and path following (issue 15's goals 1.0 / 3 / 1.0 m). Measured 2026-12-02 at --rate 20
+# and 8 on 2 cores: cross-track 0.57-0.71 m, waiting 0.99-1.65 m, holding (p95) 0.63-1.30 m (over the goal when the
+# boat, arriving, makes one 2 m loop about its point); the margins are for a loaded machine.
+MAX_USV_RMSE_M = 1.2
+MAX_WAIT_DRIFT_M = 3.0
+MAX_HOLD_P95_M = 1.5
 MAX_HOLD_DRIFT_M = 25.0  # the USV holding position after the AUV is gone (docs/mission.md)
 MAX_NAV_RMSE_M = 1.0     # the AUV's USBL navigation against its truth, during its mission (issue 16)
 MAX_AUV_RMSE_M = 0.4     # the AUV's true cross-track from the first waypoint (thesis 0.23 m; measured 0.20 m)
@@ -43,13 +47,12 @@ def test_default_mission_succeeds(tmp_path):
     assert m["usv_final_phase"] == "ARRIVED" and m["auv_final_phase"] == "TARGET_FOUND"
     assert m["target_error_m"] is not None and m["target_error_m"] < MAX_TARGET_ERROR_M, m
     assert m["min_clearance_m"] is not None and m["min_clearance_m"] > MIN_CLEARANCE_M, m
-    assert m["usv_xte_samples"] > 0 and m["usv_rmse_m"] is not None
+    assert m["usv_xte_samples"] > 0 and m["usv_rmse_m"] is not None and m["usv_rmse_m"] < MAX_USV_RMSE_M, m
     # the AUV navigated on USBL fixes (placed by the USV's relayed GPS and heading), fused in AuvNavigation
     assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
     assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < MAX_NAV_RMSE_M, m
     assert m["auv_rmse_m"] is not None and m["auv_rmse_m"] < MAX_AUV_RMSE_M, m
-    # station keeping with the twin-jet DP (docs/mission.md): measured 3.4 m waiting and 3.8 m holding (the ROS-free
-    # mission on the same scenario); the lumped model without DP drifted about 50 m while waiting
+    # station keeping with the twin-jet DP (docs/mission.md); the lumped model without DP drifted about 50 m waiting
     assert m["usv_wait_drift_m"] is not None and m["usv_wait_drift_m"] < MAX_WAIT_DRIFT_M, m
     assert m["usv_hold_p95_m"] is not None and m["usv_hold_p95_m"] < MAX_HOLD_P95_M, m
     for f in ("map.png", "cross_track.png", "summary.md", "usv.bag", "auv.bag", "rviz_usv.png"):

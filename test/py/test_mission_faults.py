@@ -44,7 +44,10 @@ FAULTS = {
 
 
 def run(out, *extra):
-    r = run_job([sys.executable, JOB, "--out", str(out), "--rate", "20", "--quiet"] + list(extra), 600)
+    # --rate 10, not the job's 20: these deadlines are a tenth of a second, and at a speed-up every wall-clock delay
+    # of a callback on the loaded machine is that many times longer in simulated time (the jet's detection came
+    # 0.33 s late once at 20). The missions are short; the wall time hardly changes (2 cores reach about 7x).
+    r = run_job([sys.executable, JOB, "--out", str(out), "--rate", "10", "--quiet"] + list(extra), 600)
     assert os.path.exists(os.path.join(str(out), "metrics.json")), r.stdout[-3000:]
     return r, json.load(open(os.path.join(str(out), "metrics.json")))
 
@@ -127,9 +130,10 @@ def test_a_target_outside_the_operating_region_is_refused_saying_why(tmp_path):
     assert f["vehicle"] == "both" and abs(f["injected_at_s"] - start) < 1.0, f
     assert f["action"] == "refuse", f
     # on arrival (its callback), after the relay's latency: wall time, times the run's speed-up; the first message
-    # of a topic waits for the subscribers to connect to the USV relay's publisher of it (5.8 s simulated measured)
+    # of a topic waits for the subscribers to connect to the USV relay's publisher of it (5.8 s simulated measured).
+    # The arrival is the bag's receive time, itself up to half a second late (0.42 s measured): +-0.5 s.
     assert f["arrived_at_s"] is not None and 0.0 <= f["arrived_at_s"] - f["injected_at_s"] <= 10.0, f
-    assert 0.0 <= f["detected_at_s"] - f["arrived_at_s"] <= 0.5, f
+    assert abs(f["detected_at_s"] - f["arrived_at_s"]) <= 0.5, f
     assert "outside the operating region" in f["reason"] and "5.0 km" in f["reason"], f
     assert f["safe_state_at_s"] == f["detected_at_s"] and f["recovered_at_s"] is None, f
     assert m["usv_final_phase"] not in ("TRANSIT", "ARRIVED"), m["usv_final_phase"]  # it never went for it
