@@ -21,16 +21,40 @@ ThrustAllocator::ThrustAllocator(const Eigen::MatrixXd& tcm, const Eigen::Vector
                       std::to_string(tcm.cols()) + " thrusters");
   for (int i = 0; i < max_.size(); ++i) requirePositive("max_thrust[" + std::to_string(i) + "]", max_[i]);
   pinv_ = tcm_.completeOrthogonalDecomposition().pseudoInverse();
+  // Groups: thrusters that act on a common degree of freedom, transitively (T and T^+ are block-diagonal over
+  // them, so each group's thrusts depend on its own degrees of freedom only).
+  const int n = static_cast<int>(tcm_.cols());
+  group_.assign(n, -1);
+  int groups = 0;
+  for (int seed = 0; seed < n; ++seed) {
+    if (group_[seed] >= 0) continue;
+    std::vector<int> todo{seed};
+    group_[seed] = groups;
+    while (!todo.empty()) {
+      const int j = todo.back();
+      todo.pop_back();
+      for (int row = 0; row < tcm_.rows(); ++row) {
+        if (tcm_(row, j) == 0.0) continue;
+        for (int k = 0; k < n; ++k)
+          if (group_[k] < 0 && tcm_(row, k) != 0.0) {
+            group_[k] = groups;
+            todo.push_back(k);
+          }
+      }
+    }
+    ++groups;
+  }
 }
 
 AllocationResult ThrustAllocator::allocate(const Eigen::VectorXd& tau) const {
   AllocationResult r;
   r.thrust = Eigen::VectorXd::Zero(tcm_.cols());
   if (tau.size() == tcm_.rows() && tau.allFinite()) r.thrust = pinv_ * tau;
-  double scale = 1.0;
-  for (int i = 0; i < r.thrust.size(); ++i) scale = std::max(scale, std::abs(r.thrust[i]) / max_[i]);
-  r.saturated = scale > 1.0 + 1e-12;
-  r.thrust /= scale;
+  const int n = static_cast<int>(r.thrust.size());
+  std::vector<double> scale(group_.empty() ? 0 : *std::max_element(group_.begin(), group_.end()) + 1, 1.0);
+  for (int i = 0; i < n; ++i) scale[group_[i]] = std::max(scale[group_[i]], std::abs(r.thrust[i]) / max_[i]);
+  for (int i = 0; i < n; ++i) r.thrust[i] /= scale[group_[i]];
+  r.saturated = std::any_of(scale.begin(), scale.end(), [](double s) { return s > 1.0 + 1e-12; });
   r.setpoint = r.thrust.cwiseQuotient(max_);
   if (command_for_)
     for (int i = 0; i < r.thrust.size(); ++i) r.setpoint[i] = std::clamp(command_for_(i, r.thrust[i]), -1.0, 1.0);

@@ -250,7 +250,12 @@ const ParamTable<Girona500ControlParams>& Girona500ControlParams::table() {
       .nest("yaw/", &P::yaw, PidGains::table())
       .number("lead", &P::lead, 0.0, 100.0, "m", "path following: the reference this far ahead of the projection")
       .number("cross_ki", &P::cross_ki, 0.0, 10.0, "1/s", "path-frame cross-track integral gain (0 = off)")
-      .number("cross_limit", &P::cross_limit, 0.0, 100.0, "m", "largest cross-track offset of the integral");
+      .number("cross_limit", &P::cross_limit, 0.0, 100.0, "m", "largest cross-track offset of the integral")
+      .number("max_crab", &P::max_crab, 0.0, 1.5, "rad",
+              "largest heading offset from the path toward the force demand in a cross current (0 = off)")
+      .number("crab_tf", &P::crab_tf, 0.0, 100.0, "s", "low-pass time constant of the force demand the crab follows")
+      .number("crab_force", &P::crab_force, 1.0, 1000.0, "N",
+              "sideways part of the force demand left to the sway thruster before the bow turns");
   return t;
 }
 
@@ -282,6 +287,8 @@ Girona500Out Girona500Controller::update(const VehicleState& s, const MotionRefe
     d_.reset();
     yaw_.reset();
     cross_offset_ = 0.0;
+    force_lp_.setZero();
+    crab_ = 0.0;
     out.alloc = alloc_.allocate(Eigen::Vector4d::Zero());
     return out;
   }
@@ -305,11 +312,30 @@ Girona500Out Girona500Controller::update(const VehicleState& s, const MotionRefe
   const double fn = n_.update(err.x(), v_ref.x() - v_ned.x(), p_.dt);
   const double fe = e_.update(err.y(), v_ref.y() - v_ned.y(), p_.dt);
   const double fd = d_.update(err.z(), -s.velocity.z(), p_.dt);
-  const double tn = yaw_.update(angleDiff(r.heading, s.yaw), -s.angular_rate.z(), p_.dt);
+  updateCrab(r, Eigen::Vector2d(fn, fe));
+  const double tn = yaw_.update(angleDiff(wrapAngle(r.heading + crab_), s.yaw), -s.angular_rate.z(), p_.dt);
   const Eigen::Vector2d fb = toBody(Eigen::Vector2d(fn, fe), s.yaw);
   out.tau << fb.x(), fb.y(), fd, tn;
   out.alloc = alloc_.allocate(out.tau);
   return out;
+}
+
+void Girona500Controller::updateCrab(const MotionReference& r, const Eigen::Vector2d& f_ned) {
+  if (r.mode != ReferenceMode::kFollow || p_.max_crab <= 0.0) {  // holding a point: the heading guidance asks
+    force_lp_.setZero();
+    crab_ = 0.0;
+    return;
+  }
+  force_lp_ += (p_.dt / (p_.crab_tf + p_.dt)) * (f_ned - force_lp_);
+  // The bow turns from guidance's heading (which already turns toward the leg) toward the demand, only as far as
+  // needed to leave the sway thruster at most crab_force of it. |along|: a demand that brakes (a following
+  // current) crabs as one that pushes, never turns the stern forward.
+  const Eigen::Vector2d u(std::cos(r.heading), std::sin(r.heading)), v(-u.y(), u.x());
+  const double beta = std::atan2(force_lp_.dot(v), std::abs(force_lp_.dot(u)));
+  const double magnitude = force_lp_.norm();
+  const double keep = magnitude > p_.crab_force ? std::asin(p_.crab_force / magnitude) : M_PI / 2;
+  const double a = std::copysign(std::max(0.0, std::abs(beta) - keep), beta);
+  crab_ = std::clamp(a, -p_.max_crab, p_.max_crab);
 }
 
 }  // namespace control

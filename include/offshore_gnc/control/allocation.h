@@ -1,9 +1,13 @@
 #pragma once
-// Thrust allocation f = T^+ tau (thesis eq. 4.8) with per-thruster saturation. When a thruster saturates the
-// whole vector is scaled down so the wrench keeps its direction. ROS-free.
+// Thrust allocation f = T^+ tau (thesis eq. 4.8) with per-thruster saturation. When a thruster saturates, the
+// thrusts of its group are scaled down so that the group's part of the wrench keeps its direction. A group is a
+// set of thrusters coupled through the degrees of freedom they act on (the Girona500: surge + yaw, sway, heave):
+// the groups act on disjoint degrees of freedom, so the depth is held while the horizontal thrusters saturate
+// in a current. ROS-free.
 #include <Eigen/Core>
 
 #include <functional>
+#include <vector>
 
 namespace offshore_gnc {
 namespace control {
@@ -26,9 +30,11 @@ class ThrustAllocator {
   const Eigen::MatrixXd& tcm() const { return tcm_; }
   const Eigen::MatrixXd& pinv() const { return pinv_; }
   int thrusters() const { return static_cast<int>(tcm_.cols()); }
+  const std::vector<int>& groups() const { return group_; }  // group index of each thruster
 
  private:
   Eigen::MatrixXd tcm_, pinv_;
+  std::vector<int> group_;
   Eigen::VectorXd max_;
   CommandFor command_for_;
 };

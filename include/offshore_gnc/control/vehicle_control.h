@@ -117,6 +117,13 @@ struct Girona500ControlParams {
   double cross_ki = 0.05;        // path frame cross-track integral gain (moves the reference across the leg so
                                  // that current leaves no standing error; 0 = off) [1/s]
   double cross_limit = 3.0;      // |cross-track offset| bound (anti-windup) [m]
+  // Crab into a cross current while following: the lateral thruster (about 40 N) cannot hold 0.5 m/s of cross
+  // current (about 120 N of sway drag), the two surge thrusters can. The heading turns from guidance's toward the
+  // low-passed horizontal force demand, as far as needed to leave at most crab_force of it across the bow, at
+  // most max_crab (0 = the thesis' heading from guidance).
+  double max_crab = 1.2;         // [rad]
+  double crab_tf = 5.0;          // low-pass time constant of the force demand [s]
+  double crab_force = 40.0;      // the lateral thruster's limit: the bow turns once it is not enough [N]
   Eigen::MatrixXd tcm;           // 4 x n (surge, sway, heave, yaw); default: models::AuvParams::girona500().tcm()
   Eigen::VectorXd max_thrust;    // default: the smaller of each thruster's forward / reverse maximum [N]
   ThrustAllocator::CommandFor command_for;  // default: the models' inverse thruster curves
@@ -139,11 +146,15 @@ class Girona500Controller {
   Girona500Out update(const VehicleState& s, const MotionReference& r);
   const ThrustAllocator& allocator() const { return alloc_; }
   const Counters& counters() const { return counters_; }
+  double crab() const { return crab_; }  // the last step's heading offset from guidance's heading [rad]
 
  private:
   Girona500ControlParams p_;
   Pid n_, e_, d_, yaw_;
   double cross_offset_ = 0.0;
+  Eigen::Vector2d force_lp_ = Eigen::Vector2d::Zero();  // low-passed NED force demand (crab)
+  double crab_ = 0.0;
+  void updateCrab(const MotionReference& r, const Eigen::Vector2d& f_ned);
   ThrustAllocator alloc_;
   Counters counters_;
 };

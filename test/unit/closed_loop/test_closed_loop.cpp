@@ -76,3 +76,20 @@ TEST(ClosedLoop, Girona500CoveragePattern) {
   EXPECT_EQ(r.rejected_commands, 0u);
   EXPECT_LT(r.hold_error, 1.0);
 }
+
+TEST(ClosedLoop, Girona500CrabsAcrossAStrongCurrent) {
+  // strong_current.yaml's 0.5 m/s across the lawnmower's legs: the lateral thruster alone cannot hold the leg
+  // (the AUV was carried off its pattern), the crab turns the surge thrusters into the current.
+  auto cfg = scenarios::auvCoverage(true);
+  cfg.current = Eigen::Vector2d(0.0, 0.5);
+  cfg.max_time = 1500.0;
+  const auto crab = runAuv(cfg);
+  EXPECT_TRUE(crab.finished) << crab.status;
+  EXPECT_LE(crab.metrics.rmse, 1.0) << "RMSE " << crab.metrics.rmse;
+  const auto auv = cfg.auv;
+  cfg.auv = [auv](AuvStackConfig& a) { auv(a); a.control.girona500.max_crab = 0.0; };
+  const auto fixed = runAuv(cfg);
+  RecordProperty("rmse_crab_m", std::to_string(crab.metrics.rmse));
+  RecordProperty("rmse_fixed_heading_m", std::to_string(fixed.metrics.rmse));
+  EXPECT_GT(fixed.metrics.rmse, 2.0 * crab.metrics.rmse) << "without the crab: RMSE " << fixed.metrics.rmse;
+}

@@ -133,12 +133,23 @@ TEST(Allocation, PseudoinverseReproducesTheWrench) {
   EXPECT_NEAR((T * r.thrust - tau).norm(), 0.0, 1e-9);
   EXPECT_NEAR(r.thrust[0], 21.0, 1e-9);  // (30 + 3 / 0.25) / 2
   EXPECT_NEAR(r.setpoint[4], -10.0 / 60.0, 1e-12);
-  // saturation keeps the direction of the wrench
+  // saturation keeps the direction of each group's part of the wrench, every thrust within its limit
   const auto s = a.allocate(tau * 10);
   EXPECT_TRUE(s.saturated);
   EXPECT_LE(s.thrust.cwiseAbs().maxCoeff(), 60.0 + 1e-9);
   const Eigen::VectorXd w = T * s.thrust;
-  EXPECT_NEAR(w.normalized().dot(tau.normalized()), 1.0, 1e-9);
+  EXPECT_NEAR(w[3] / w[0], tau[3] / tau[0], 1e-12);
+  EXPECT_NEAR(std::abs(w[1]), 60.0, 1e-9);  // sway and heave at their limits
+  EXPECT_NEAR(std::abs(w[2]), 120.0, 1e-9);
+  // thrusters on disjoint degrees of freedom saturate apart: (surge, yaw), heave, sway
+  EXPECT_EQ(a.groups(), (std::vector<int>{0, 0, 1, 1, 2}));
+  const auto h = a.allocate(Eigen::Vector4d(600, -10, 20, 3));  // the surge pair saturates, heave and sway not
+  EXPECT_TRUE(h.saturated);
+  const Eigen::VectorXd wh = T * h.thrust;
+  EXPECT_NEAR(wh[1], -10.0, 1e-9);
+  EXPECT_NEAR(wh[2], 20.0, 1e-9);
+  EXPECT_NEAR(wh[3] / wh[0], 3.0 / 600.0, 1e-12);  // the surge-yaw pair keeps its direction
+  EXPECT_LE(h.thrust.cwiseAbs().maxCoeff(), 60.0 + 1e-9);
   // bad input: zero thrust, never NaN
   const auto n = a.allocate(Eigen::Vector4d(std::nan(""), 0, 0, 0));
   EXPECT_TRUE(n.thrust.allFinite());
