@@ -255,7 +255,9 @@ def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_st
         arrived = None
         if f["name"] == "geofence" and on is not None:  # the USV mission's region check answers it
             p = f.get("target_ned") or (float("nan"),) * 2
-            arrived = next((t for t, m in usv_targets if t >= on - 1e-6 and
+            # matched by the phantom's own stamp (its injection time), not by the bag's time: under load the USV
+            # master's clock can trail the job's round by more than the relay's latency
+            arrived = next((t for t, m in usv_targets if _stamp(t, m) >= on - 1e-6 and
                             math.hypot(m.origin.x - p[0], m.origin.y - p[1]) < 1.0), None)
             refusal = next(((_stamp(t, m), m.detail) for t, m in usv_status
                             if _stamp(t, m) >= on - 1e-6 and REFUSED in m.detail), None)

@@ -131,8 +131,9 @@ def test_a_target_outside_the_operating_region_is_refused_saying_why(tmp_path):
     assert f["action"] == "refuse", f
     # on arrival (its callback), after the relay's latency: wall time, times the run's speed-up; the first message
     # of a topic waits for the subscribers to connect to the USV relay's publisher of it (5.8 s simulated measured).
-    # The arrival is the bag's receive time, itself up to half a second late (0.42 s measured): +-0.5 s.
-    assert f["arrived_at_s"] is not None and 0.0 <= f["arrived_at_s"] - f["injected_at_s"] <= 10.0, f
+    # The arrival is the bag's receive time, itself up to half a second late (0.42 s measured): +-0.5 s. The USV
+    # master's clock may trail the job's round (docs/mission.md, pacing; seen under the sanitizers): from -1 s.
+    assert f["arrived_at_s"] is not None and -1.0 <= f["arrived_at_s"] - f["injected_at_s"] <= 10.0, f
     assert abs(f["detected_at_s"] - f["arrived_at_s"]) <= 0.5, f
     assert "outside the operating region" in f["reason"] and "5.0 km" in f["reason"], f
     assert f["safe_state_at_s"] == f["detected_at_s"] and f["recovered_at_s"] is None, f
