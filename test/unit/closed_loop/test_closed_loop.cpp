@@ -83,11 +83,12 @@ TEST(ClosedLoop, Girona500CrabsAcrossAStrongCurrent) {
   auto cfg = scenarios::auvCoverage(true);
   cfg.current = Eigen::Vector2d(0.0, 0.5);
   cfg.max_time = 1500.0;
+  const auto base = cfg.auv;
+  cfg.auv = [base](AuvStackConfig& a) { base(a); a.control.girona500.max_crab = 1.2; };
   const auto crab = runAuv(cfg);
   EXPECT_TRUE(crab.finished) << crab.status;
   EXPECT_LE(crab.metrics.rmse, 1.0) << "RMSE " << crab.metrics.rmse;
-  const auto auv = cfg.auv;
-  cfg.auv = [auv](AuvStackConfig& a) { auv(a); a.control.girona500.max_crab = 0.0; };
+  cfg.auv = [base](AuvStackConfig& a) { base(a); a.control.girona500.max_crab = 0.0; };
   const auto fixed = runAuv(cfg);
   RecordProperty("rmse_crab_m", std::to_string(crab.metrics.rmse));
   RecordProperty("rmse_fixed_heading_m", std::to_string(fixed.metrics.rmse));
