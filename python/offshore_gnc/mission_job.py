@@ -277,7 +277,7 @@ class Screenshots:
         return True
 
     def maybe_shoot(self, usv_phase, force=False):
-        if usv_phase not in ("TRANSIT", "ARRIVED") or not self._reap():
+        if (usv_phase not in ("TRANSIT", "ARRIVED") and not force) or not self._reap():
             return
         if time.time() - self.last_t < self.INTERVAL_S and not force:
             return
@@ -294,7 +294,9 @@ class Screenshots:
         the most of them) as rviz_usv.png; a run quicker than the shot interval gets one shot here, at its end."""
         from offshore_gnc.testing.screenshot import count_colour
         self._reap(wait=True)
-        if not self.shots:
+        for _ in range(3):  # none kept (every shot failed, or the run ended in another phase): at the end, in any phase
+            if self.shots:
+                break
             self.maybe_shoot(usv_phase, force=True)
             self._reap(wait=True)
         best, best_score = None, -1
