@@ -25,11 +25,11 @@ ThrustAllocator::ThrustAllocator(const Eigen::MatrixXd& tcm, const Eigen::Vector
   // them, so each group's thrusts depend on its own degrees of freedom only).
   const int n = static_cast<int>(tcm_.cols());
   group_.assign(n, -1);
-  int groups = 0;
+  groups_ = 0;
   for (int seed = 0; seed < n; ++seed) {
     if (group_[seed] >= 0) continue;
     std::vector<int> todo{seed};
-    group_[seed] = groups;
+    group_[seed] = groups_;
     while (!todo.empty()) {
       const int j = todo.back();
       todo.pop_back();
@@ -37,12 +37,12 @@ ThrustAllocator::ThrustAllocator(const Eigen::MatrixXd& tcm, const Eigen::Vector
         if (tcm_(row, j) == 0.0) continue;
         for (int k = 0; k < n; ++k)
           if (group_[k] < 0 && tcm_(row, k) != 0.0) {
-            group_[k] = groups;
+            group_[k] = groups_;
             todo.push_back(k);
           }
       }
     }
-    ++groups;
+    ++groups_;
   }
 }
 
@@ -51,7 +51,7 @@ AllocationResult ThrustAllocator::allocate(const Eigen::VectorXd& tau) const {
   r.thrust = Eigen::VectorXd::Zero(tcm_.cols());
   if (tau.size() == tcm_.rows() && tau.allFinite()) r.thrust = pinv_ * tau;
   const int n = static_cast<int>(r.thrust.size());
-  std::vector<double> scale(group_.empty() ? 0 : *std::max_element(group_.begin(), group_.end()) + 1, 1.0);
+  std::vector<double> scale(groups_, 1.0);
   for (int i = 0; i < n; ++i) scale[group_[i]] = std::max(scale[group_[i]], std::abs(r.thrust[i]) / max_[i]);
   for (int i = 0; i < n; ++i) r.thrust[i] /= scale[group_[i]];
   r.saturated = std::any_of(scale.begin(), scale.end(), [](double s) { return s > 1.0 + 1e-12; });

@@ -252,7 +252,7 @@ const ParamTable<Girona500ControlParams>& Girona500ControlParams::table() {
       .number("cross_ki", &P::cross_ki, 0.0, 10.0, "1/s", "path-frame cross-track integral gain (0 = off)")
       .number("cross_limit", &P::cross_limit, 0.0, 100.0, "m", "largest cross-track offset of the integral")
       .number("max_crab", &P::max_crab, 0.0, 1.5, "rad",
-              "largest heading offset from the path toward the force demand in a cross current (0 = off)")
+              "largest heading offset from guidance's toward the force demand in a cross current (0 = off)")
       .number("crab_tf", &P::crab_tf, 0.0, 100.0, "s", "low-pass time constant of the force demand the crab follows")
       .number("crab_force", &P::crab_force, 1.0, 1000.0, "N",
               "sideways part of the force demand left to the sway thruster before the bow turns");

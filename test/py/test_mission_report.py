@@ -221,9 +221,11 @@ def test_fault_entries_carry_the_issues_keys_and_say_what_happened():
     assert fence["safe_state_at_s"] == 32.5 and fence["recovered_at_s"] is None
     assert "nothing to recover" in fence["summary"]
     # a USV master whose clock trails the job's round receives the phantom (stamped at injection) "before" it
-    late = [stamped(phantom, 30.0)[1]]
-    late = report.fault_reports(planned[1:2], {}, {}, usv_status=status, usv_targets=[(29.8, late[0])])
-    assert late[0]["arrived_at_s"] == 29.8, late
+    late = Target()
+    late.origin.x = 5000.0
+    late.header.stamp = rospy.Time.from_sec(30.0)
+    r = report.fault_reports(planned[1:2], {}, {}, usv_status=status, usv_targets=[(29.8, late)])
+    assert r[0]["arrived_at_s"] == 29.8, r
     d = f["dvl"]
     assert d["detected_at_s"] is None and d["action"] is None and "no rule answered it" in d["summary"], d
     assert safe.reached("usv", "hold", 40.0) == 42.0  # under 0.5 m/s

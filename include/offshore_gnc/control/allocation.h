@@ -34,7 +34,8 @@ class ThrustAllocator {
 
  private:
   Eigen::MatrixXd tcm_, pinv_;
-  std::vector<int> group_;
+  std::vector<int> group_;  // group index of each thruster
+  int groups_ = 0;
   Eigen::VectorXd max_;
   CommandFor command_for_;
 };

@@ -147,14 +147,13 @@ class Girona500Controller {
   Girona500Out update(const VehicleState& s, const MotionReference& r);
   const ThrustAllocator& allocator() const { return alloc_; }
   const Counters& counters() const { return counters_; }
-  double crab() const { return crab_; }  // the last step's heading offset from guidance's heading [rad]
 
  private:
   Girona500ControlParams p_;
   Pid n_, e_, d_, yaw_;
   double cross_offset_ = 0.0;
   Eigen::Vector2d force_lp_ = Eigen::Vector2d::Zero();  // low-passed NED force demand (crab)
-  double crab_ = 0.0;
+  double crab_ = 0.0;  // heading offset from guidance's heading [rad]
   void updateCrab(const MotionReference& r, const Eigen::Vector2d& f_ned);
   ThrustAllocator alloc_;
   Counters counters_;
