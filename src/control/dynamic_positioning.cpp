@@ -92,7 +92,9 @@ DpOutput DynamicPositioning::update(const VehicleState& s, const Eigen::Vector2d
     fe_.reset(s.position.y());
     fvn_.reset(v_ned.x());
     fve_.reset(v_ned.y());
-    heading_ref_ = heading;
+    // Once the bow is into the current it stays there: a resume after a moment of neutral (stale odometry on a
+    // loaded computer) that went back to the hold's heading put the boat beam on and cost 8 m in 0.5 m/s.
+    if (!into_force_) heading_ref_ = heading;
     primed_ = true;
   }
   const Eigen::Vector2d p(fn_.step(s.position.x()), fe_.step(s.position.y()));

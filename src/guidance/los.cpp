@@ -196,7 +196,10 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
   }
 
   const Eigen::Vector2d p = s.position.head<2>();
-  double e = 0.0, along = 0.0, chi_p = 0.0;
+  double e = 0.0, along = 0.0;
+  // Station keeping at the end holds the last leg's angle (the hold's heading until a current is learnt), on
+  // every step: with 0 after the first, a controller that first saw the hold one step late turned to north.
+  double chi_p = std::atan2(wp_[leg_].y() - wp_[leg_ - 1].y(), wp_[leg_].x() - wp_[leg_ - 1].x());
   // Switching (eq. 4.13/4.14) plus the passed-waypoint rule: along-track beyond the leg length.
   while (!finished_) {
     const Eigen::Vector3d& a = wp_[leg_ - 1];

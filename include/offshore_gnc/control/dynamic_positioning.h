@@ -32,7 +32,7 @@ struct DpParams {
   double i_speed = 0.1;        // ... and while closing in on it slower than this [m/s]
   double heading_force = 40.0; // a (low-passed) force above this starts the weathervaning [N]
   double weathervane_force = 150.0;  // below this force the heading turns in proportion to it [N]
-  double weathervane_gain = 0.1;     // heading rate per radian off the water's flow [1/s]
+  double weathervane_gain = 0.25;    // heading rate per radian off the water's flow [1/s]
   double force_tf = 10.0;      // low-pass time constant of the force the weathervaning reads [s]
   double drag_ratio = 9.5;     // hull drag across / along at the same water speed (Table 3.4: Y_|v|v / X_|u|u)
   double turn_rate = 0.1;      // largest rate of the held heading [rad/s]
@@ -57,8 +57,8 @@ class DynamicPositioning {
   // `heading` is the reference heading of the hold (e.g. the path's last leg), used until a steady force is learnt.
   DpOutput update(const VehicleState& s, const Eigen::Vector2d& point, double heading);
   void reset();   // forget the learnt force (a new hold point far from the last)
-  // Back to station keeping after something else (path following, neutral): the filters and the held heading
-  // restart, the learnt force stays. Not from gaps in the state's stamps: on a loaded vehicle computer the
+  // Back to station keeping after something else (path following, neutral): the filters restart, the learnt
+  // force stays, and so does the held heading once weathervaning (else it restarts from the hold's). Not from gaps in the state's stamps: on a loaded vehicle computer the
   // odometry comes late now and then, and each restart turned the bow back to the hold's heading (beam on).
   void resume();
   void setParams(const DpParams& p);  // validates; keeps the learnt force

@@ -19,13 +19,18 @@ namespace {
 
 struct HoldRun {
   double final_distance = 0.0, max_distance = 0.0, final_yaw = 0.0, max_north = -1e9;
+  double max_distance_after_idle = 0.0;
   bool entered_box = false;
+};
+
+struct Idle {  // a moment of neutral command (the control loop's stale-input case)
+  double from = -1.0, seconds = 0.0;
 };
 
 // The boat from `start` holds `point` for `seconds` in a current (north, east); the box (centre, half side) must
 // stay clear.
 HoldRun hold(const VehicleState& start, const Eigen::Vector2d& point, double north, double east, double seconds,
-         const Eigen::Vector2d& box = Eigen::Vector2d::Constant(1e9), double half = 0.0) {
+         const Eigen::Vector2d& box = Eigen::Vector2d::Constant(1e9), double half = 0.0, Idle idle = {}) {
   models::UsvModel boat(models::loadUsvParams("config/models/usv.yaml"));
   models::EnvironmentParams ep;
   ep.current_north = north;
@@ -40,15 +45,19 @@ HoldRun hold(const VehicleState& start, const Eigen::Vector2d& point, double nor
   r.mode = ReferenceMode::kHold;
   r.point = Eigen::Vector3d(point.x(), point.y(), 0.0);
   r.heading = start.yaw;
+  MotionReference idle_ref;  // idle: neutral
   HoldRun out;
   for (double t = 0.0; t < seconds; t += p.dt) {
     const VehicleState& s = boat.state();
-    const JoystickOut j = c.update(s, r);
+    const bool idling = t >= idle.from && t < idle.from + idle.seconds;
+    const JoystickOut j = c.update(s, idling ? idle_ref : r);
     boat.setCommand({j.surge, j.sway, j.yaw});
     boat.step(p.dt, env);
     const Eigen::Vector2d ne = boat.state().position.head<2>();
     out.max_distance = std::max(out.max_distance, (ne - point).norm());
     out.max_north = std::max(out.max_north, ne.x());
+    if (idle.from >= 0.0 && t >= idle.from)
+      out.max_distance_after_idle = std::max(out.max_distance_after_idle, (ne - point).norm());
     out.entered_box = out.entered_box || ((ne - box).cwiseAbs().maxCoeff() < half);
   }
   out.final_distance = (boat.state().position.head<2>() - point).norm();
@@ -91,6 +100,15 @@ TEST(DynamicPositioning, AStrongCurrentIsHeldBowOn) {
   EXPECT_LT(std::abs(angleDiff(r.final_yaw, std::atan2(-0.5, -0.1))), deg2rad(25.0)) << r.final_yaw;
   EXPECT_LT(r.max_distance, 5.0);
   EXPECT_LT(r.final_distance, 1.0);
+}
+
+TEST(DynamicPositioning, AMomentOfNeutralKeepsTheBowIntoTheCurrent) {
+  // Bow on to 0.5 m/s after 150 s, then a second of neutral command (stale odometry): station keeping resumes
+  // with the bow where it was. Going back to the hold's heading (beam on) carried the boat 8 m in a ROS mission.
+  const HoldRun r = hold(at(0.0, 0.0, 0.0), Eigen::Vector2d::Zero(), 0.1, 0.5, 300.0,
+                         Eigen::Vector2d::Constant(1e9), 0.0, Idle{150.0, 1.0});
+  EXPECT_LT(std::abs(angleDiff(r.final_yaw, std::atan2(-0.5, -0.1))), deg2rad(25.0)) << r.final_yaw;
+  EXPECT_LT(r.max_distance_after_idle, 1.5);
 }
 
 TEST(DynamicPositioning, BadParametersAreRefusedNamingThem) {

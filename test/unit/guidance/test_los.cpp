@@ -261,6 +261,20 @@ TEST(Los, EndOfPathStationKeeping) {
   EXPECT_EQ(g.update(at(0, 0), 0.1).mode, Mode::kStationKeeping);  // stays finished
 }
 
+TEST(Los, StationKeepingHoldsTheLastLegsAngleOnEveryStep) {
+  // The hold's heading (dynamic positioning's, until it learns a current) is the last leg's, not only on the
+  // step that finishes the path: the ROS controller may first see the hold a step later.
+  LosGuidance g(plain());
+  g.setPath({V3(0, 0, 0), V3(30, 0, 0), V3(30, -30, 0)});
+  g.update(at(30, -2), 0.1);
+  for (int i = 0; i < 3; ++i) {
+    const auto o = g.update(at(31, -31), 0.1);
+    ASSERT_EQ(o.mode, Mode::kStationKeeping);
+    EXPECT_NEAR(o.path_angle, -kPi / 2, 1e-9) << "step " << i;
+    EXPECT_NEAR(o.desired_heading, -kPi / 2, 1e-9) << "step " << i;
+  }
+}
+
 TEST(Los, BadInputHoldsWithoutNaN) {
   LosGuidance g(plain());
   auto finite = [](const LosOutput& o) {
