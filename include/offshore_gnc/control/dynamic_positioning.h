@@ -58,13 +58,14 @@ class DynamicPositioning {
   DpOutput update(const VehicleState& s, const Eigen::Vector2d& point, double heading);
   void reset();   // forget the learnt force (a new hold point far from the last)
   // Back to station keeping after something else (path following, neutral): the filters restart, the learnt
-  // force stays, and so does the held heading once weathervaning (else it restarts from the hold's). Not from gaps in the state's stamps: on a loaded vehicle computer the
+  // force stays, and so does the weathervaned heading if the hold point is the same (else the hold's heading). Not from gaps in the state's stamps: on a loaded vehicle computer the
   // odometry comes late now and then, and each restart turned the bow back to the hold's heading (beam on).
   void resume();
   void setParams(const DpParams& p);  // validates; keeps the learnt force
   const DpParams& params() const { return p_; }
 
  private:
+  static constexpr double kSameHold = 1.0;  // a resumed hold point this close [m] is the same hold
   void makeFilters();
   // The water's flow (NED, upstream, in units of sqrt(N) along the hull) that asks for `force` at `yaw`.
   Eigen::Vector2d currentOf(const Eigen::Vector2d& force, double yaw) const;

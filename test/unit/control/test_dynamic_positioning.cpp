@@ -111,6 +111,22 @@ TEST(DynamicPositioning, AMomentOfNeutralKeepsTheBowIntoTheCurrent) {
   EXPECT_LT(r.max_distance_after_idle, 1.5);
 }
 
+TEST(DynamicPositioning, ANewHoldStartsFromItsOwnHeading) {
+  // Weathervaning at one point, then resumed: at the same point the bow stays where it was turned; at a new point
+  // (a safety stop under way) the hold's own heading comes first, so the braking boat is not spun round.
+  DynamicPositioning dp(DpParams{}, 0.1);
+  const VehicleState s = at(3.0, 0.0, 0.0);  // 3 m past the point, at rest: a steady force astern
+  DpOutput o;
+  for (int i = 0; i < 300; ++i) o = dp.update(s, Eigen::Vector2d::Zero(), 0.0);
+  ASSERT_TRUE(o.weathervaning);
+  const double turned = o.heading;
+  ASSERT_GT(std::abs(turned), 0.5);
+  dp.resume();
+  EXPECT_NEAR(dp.update(s, Eigen::Vector2d::Zero(), 0.0).heading, turned, 0.05);
+  dp.resume();
+  EXPECT_NEAR(dp.update(s, Eigen::Vector2d(7.0, 0.0), 1.0).heading, 1.0, 0.05);
+}
+
 TEST(DynamicPositioning, BadParametersAreRefusedNamingThem) {
   DpParams p;
   p.turn_rate = 0.0;
