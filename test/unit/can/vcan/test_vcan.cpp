@@ -207,10 +207,14 @@ TEST(Vcan, PerJetCommandsAtTheSetRate) {
     std::vector<std::pair<double, jet::Setpoint>> cmds;
     for (const auto& c : bus.setpoints(t0))
       if (c.second.jet == j) cmds.push_back(c);
-    int in_window = 0;
+    // The rate over the frames' own span, not a count in the test's wall-clock window: in the emulated VM on a
+    // loaded host the window's start slipped (30 frames in "2 s", every gap still within a period).
+    std::vector<double> in_window;
     for (const auto& c : cmds)
-      if (c.first < t1) ++in_window;
-    EXPECT_NEAR(in_window, 40, 4) << "20 Hz for 2 s to jet " << j;
+      if (c.first < t1) in_window.push_back(c.first);
+    ASSERT_GE(in_window.size(), 20u) << "jet " << j << ": under a second of commands in 2 s";
+    const double rate = (in_window.size() - 1) / (in_window.back() - in_window.front());
+    EXPECT_NEAR(rate, cfg.command_rate, 2.0) << "jet " << j;
     for (const auto& c : cmds) EXPECT_EQ(c.second.source, kAutonomy) << "jet " << j;
     for (std::size_t i = 1; i < cmds.size(); ++i) {
       EXPECT_LT(cmds[i].first - cmds[i - 1].first, cfg.period() + kSlack);
