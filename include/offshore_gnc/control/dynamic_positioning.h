@@ -58,8 +58,8 @@ class DynamicPositioning {
   DpOutput update(const VehicleState& s, const Eigen::Vector2d& point, double heading);
   void reset();   // forget the learnt force (a new hold point far from the last)
   // Back to station keeping after something else (path following, neutral): the filters restart, the learnt
-  // force stays, and so does the weathervaned heading if the hold point is the same (else the hold's heading). Not from gaps in the state's stamps: on a loaded vehicle computer the
-  // odometry comes late now and then, and each restart turned the bow back to the hold's heading (beam on).
+  // force stays, and so does the weathervaned heading if the hold point is the same (else the hold's heading).
+  // Not called on gaps in the state's stamps: on a loaded vehicle computer the odometry comes late now and then.
   void resume();
   void setParams(const DpParams& p);  // validates; keeps the learnt force
   const DpParams& params() const { return p_; }

@@ -207,14 +207,10 @@ TEST(Vcan, PerJetCommandsAtTheSetRate) {
     std::vector<std::pair<double, jet::Setpoint>> cmds;
     for (const auto& c : bus.setpoints(t0))
       if (c.second.jet == j) cmds.push_back(c);
-    // The rate over the frames' own span, not a count in the test's wall-clock window, which also counted the
-    // startup. (A guest stalled 0.27 s by a loaded host still fails below: a gap, and the watchdog's neutral.)
-    std::vector<double> in_window;
+    int in_window = 0;
     for (const auto& c : cmds)
-      if (c.first < t1) in_window.push_back(c.first);
-    ASSERT_GE(in_window.size(), 20u) << "jet " << j << ": under a second of commands in 2 s";
-    const double rate = (in_window.size() - 1) / (in_window.back() - in_window.front());
-    EXPECT_NEAR(rate, cfg.command_rate, 2.0) << "jet " << j;
+      if (c.first < t1) ++in_window;
+    EXPECT_NEAR(in_window, 40, 4) << "20 Hz for 2 s to jet " << j;
     for (const auto& c : cmds) EXPECT_EQ(c.second.source, kAutonomy) << "jet " << j;
     for (std::size_t i = 1; i < cmds.size(); ++i) {
       EXPECT_LT(cmds[i].first - cmds[i - 1].first, cfg.period() + kSlack);
