@@ -45,7 +45,6 @@ class PerceptionSimTest(unittest.TestCase):
             time.sleep(0.1)
         return False
 
-    @unittest.skipUnless(VEHICLE == "usv", "USV scenario")
     def test_lidar_obstacles_at_scenario_positions(self):
         self.assertTrue(self._wait(lambda: len(self.targets) >= 10, 60), "fewer than 10 /usv/obstacles messages")
         with self.lock:
@@ -69,7 +68,6 @@ class PerceptionSimTest(unittest.TestCase):
                 d = min(math.hypot(t.centroid.x - o["north"], t.centroid.y - o["east"]) for o in SCENARIO["obstacles"])
                 self.assertLess(d, 6.0, "unexpected target at %.1f, %.1f" % (t.centroid.x, t.centroid.y))
 
-    @unittest.skipUnless(VEHICLE == "auv", "AUV scenario")
     def test_sonar_target_and_wall_path(self):
         tg = SCENARIO["targets"][0]
         wall = SCENARIO["walls"][0]
@@ -91,6 +89,13 @@ class PerceptionSimTest(unittest.TestCase):
         self.assertAlmostEqual(p2.x, wall["north1"] - 2.0, delta=0.6)
         self.assertAlmostEqual(math.hypot(p2.x - p1.x, p2.y - p1.y), 2.0, delta=1e-6)
 
+
+# Each run has exactly the case of its vehicle: the other one is removed, not skipped, because rosunit's XML runner
+# writes a skipped case as a pass (python/offshore_gnc/testing/results.py). An unknown vehicle stops the script
+# here, and rostest reports the missing result as a failure.
+CASES = {"usv": "test_lidar_obstacles_at_scenario_positions", "auv": "test_sonar_target_and_wall_path"}
+for _name in set(CASES.values()) - {CASES[VEHICLE]}:
+    delattr(PerceptionSimTest, _name)
 
 if __name__ == "__main__":
     rostest.rosrun("offshore_gnc", "perception_sim_" + VEHICLE, PerceptionSimTest, sys.argv)
