@@ -4,10 +4,13 @@
 // (usv_trace.csv: truth, guidance's reference, the joystick command) for tuning. --fault PLAN injects the
 // simulators' faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault; not the main job's own, link and
 // geofence); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
+// --seed S draws every sensor's noise anew (the USV simulator seed 2S-1, the AUV's 2S: S = 1 is the launch files'
+// seeds 1 and 2); the scenario's own seeds (its current's) stay as written.
 //   mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--config DIR] [--relay-latency S]
-//                   [--fault PLAN] [--out DIR]
+//                   [--fault PLAN] [--seed S] [--out DIR]
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -42,6 +45,16 @@ std::string activations(const std::vector<safety::Transition>& transitions) {
   }
   return "[" + o + "]";
 }
+// A command-line number; exits 2 naming the option when the text is not one.
+double number(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v)) {
+    std::fprintf(stderr, "mission_rosfree: %s '%s' is not a number\n", option.c_str(), text.c_str());
+    std::exit(2);
+  }
+  return v;
+}
 void writeCsv(const std::string& path, const char* header, const std::vector<Eigen::Vector4d>& rows) {
   std::ofstream f(path);
   f << header << "\n";
@@ -52,6 +65,7 @@ void writeCsv(const std::string& path, const char* header, const std::vector<Eig
 int main(int argc, char** argv) {
   std::string scenario, model = "girona500", config = OFFSHORE_GNC_CONFIG_DIR, out, faults;
   double latency = 0.0;
+  long seed = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -64,13 +78,14 @@ int main(int argc, char** argv) {
     if (a == "--scenario") scenario = next();
     else if (a == "--auv-model") model = next();
     else if (a == "--config") config = next();
-    else if (a == "--relay-latency") latency = std::stod(next());
+    else if (a == "--relay-latency") latency = number(a, next());
     else if (a == "--out") out = next();
     else if (a == "--fault") faults += " " + next();
+    else if (a == "--seed") seed = static_cast<long>(number(a, next()));
     else {
       std::fprintf(stderr,
                    "usage: mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--config DIR] "
-                   "[--relay-latency S] [--fault PLAN] [--out DIR]\n");
+                   "[--relay-latency S] [--fault PLAN] [--seed S] [--out DIR]\n");
       return 2;
     }
   }
@@ -81,6 +96,10 @@ int main(int argc, char** argv) {
   try {
     closed_loop::MissionConfig cfg = closed_loop::loadMission(config, scenario, model);
     cfg.relay_latency = latency;
+    requireRange("--seed", static_cast<double>(seed), 1, 1e9);
+    requireRange("--relay-latency", latency, 0, 60);
+    cfg.usv.sim.seed = static_cast<std::uint64_t>(2 * seed - 1);
+    cfg.auv.sim.seed = static_cast<std::uint64_t>(2 * seed);
     const FaultPlan plan = FaultPlan::parse(faults);  // ConfigError naming a bad item
     for (const auto& f : plan.faults())
       if (std::string(findFaultKind(f.name)->vehicle) == "both")
