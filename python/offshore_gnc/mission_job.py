@@ -68,8 +68,9 @@ def relay_configs(folder, speedup, dial_port=None):
 
 
 def vehicle_configs(auv_model):
-    """The vehicles' configs the stacks get (the launch files' defaults); their origins must be the scenario's,
-    which scenario_check holds them to before anything starts. Returns vehicle -> file."""
+    """The vehicles' configs the stacks get (the launch files' defaults). They describe the vehicles only: the
+    site's origin is the scenario's, which the launch files give every node (launch/site.launch). Returns
+    vehicle -> file."""
     return {"usv": os.path.join(REPO, "config", "usv.yaml"),
             "auv": os.path.join(REPO, "config", "auv_%s.yaml" % auv_model)}
 
@@ -363,8 +364,6 @@ def run(a):
         name, datetime.datetime.now().strftime("%Y%m%d-%H%M%S"))))
     os.makedirs(out, exist_ok=True)
     configs = vehicle_configs(a.auv_model)
-    # the check again with the configs the stacks get: two origins apart would offset every position
-    scenario_check.load(a.scenario, [configs["usv"], configs["auv"]])
     fault_plan = " ".join(a.fault)
     planned = scenario_check.faults(a.scenario, fault_plan)  # refused before start when it does not parse
     t0 = time.time()

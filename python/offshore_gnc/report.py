@@ -17,6 +17,8 @@ import subprocess
 
 import yaml
 
+from offshore_gnc import tools
+
 THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4 Girona500 AUV)
     "usv_rmse_m": 1.5482, "usv_sd_m": 0.7764, "usv_mae_m": 1.3397, "auv_rmse_m": 0.23,
 }
@@ -30,7 +32,7 @@ def tracking_metrics(path, selector=None):
     """Cross-track RMSE, SD and MAE (thesis Tables 4.4, 5.1) of a bag's GuidanceStatus topic in path-following
     mode, or of a CSV column, from the C++ tool `tracking_metrics` (the one implementation; the tracking bench
     uses the same code). NaN figures and n = 0 when there is nothing to measure."""
-    cmd = ["rosrun", "offshore_gnc", "tracking_metrics", path] + ([selector] if selector else [])
+    cmd = [tools.path("tracking_metrics"), path] + ([selector] if selector else [])
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) if os.path.exists(path) else None
     if r is None or r.returncode != 0:
         return {"rmse": float("nan"), "sd": float("nan"), "mae": float("nan"), "n": 0}
@@ -439,6 +441,8 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "usv_final_phase": last_usv.phase if last_usv else None,
         "auv_final_phase": last_auv.phase if last_auv else None,
         "thesis": THESIS,
+        # the site every position is relative to (the scenario's origin; map.png is local NED about it)
+        "site": {k: (sc.get("origin") or {}).get(k) for k in ("latitude", "longitude", "altitude")},
     }
     # JSON has no NaN: write null for figures that could not be computed
     if outcome and outcome.get("rviz_pixels") is not None:
@@ -496,7 +500,9 @@ def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize=8)
-    ax.set_title("Co-operative mission: %s" % sc.get("name", ""))
+    o = sc.get("origin") or {}
+    site = " (about %.5f, %.5f)" % (o["latitude"], o["longitude"]) if "latitude" in o and "longitude" in o else ""
+    ax.set_title("Co-operative mission: %s%s" % (sc.get("name", ""), site))
     fig.savefig(os.path.join(out, "map.png"), dpi=110, bbox_inches="tight")
     plt.close(fig)
 
@@ -522,7 +528,9 @@ def _summary(out, m, scenario):
     th = m["thesis"]
     lines = [
         "# Mission report", "",
-        "Scenario: `%s`" % scenario, "",
+        "Scenario: `%s`%s" % (scenario, ", site %.6f, %.6f (local north-east-down frame about it)" % (
+            m["site"]["latitude"], m["site"]["longitude"]) if m.get("site", {}).get("latitude") is not None else ""),
+        "",
         "**%s** - %s" % ("SUCCESS" if m["success"] else "FAILED", m["outcome"]), "",
         "| figure | this run | thesis field test |", "| --- | --- | --- |",
         "| USV cross-track RMSE | %s | %.4f m (Table 5.1) |" % (_fmt(m["usv_rmse_m"], " m"), th["usv_rmse_m"]),

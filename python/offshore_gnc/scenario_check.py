@@ -6,6 +6,8 @@ import subprocess
 
 import yaml
 
+from offshore_gnc import tools
+
 
 class ScenarioError(Exception):
     pass
@@ -16,19 +18,18 @@ def _check(path, args):
     if not os.path.isfile(path):
         raise ScenarioError("scenario file not found: %s" % path)
     try:
-        r = subprocess.run(["rosrun", "offshore_gnc", "scenario_check", path] + list(args), stdout=subprocess.PIPE,
+        r = subprocess.run([tools.path("scenario_check"), path] + list(args), stdout=subprocess.PIPE,
                            stderr=subprocess.STDOUT, timeout=60, text=True)
-    except FileNotFoundError:
-        raise ScenarioError("rosrun not found: source the workspace (devel/setup.bash) first")
+    except tools.ToolNotFound as e:
+        raise ScenarioError(str(e))
     if r.returncode != 0:
         raise ScenarioError("%s: %s" % (path, r.stdout.strip()))
     return json.loads(r.stdout.strip().splitlines()[-1])
 
 
-def load(path, vehicle_configs=()):
-    """Validated scenario as a dict; raises ScenarioError naming the problem. With vehicle configs, their
-    local origins must be the scenario's (the tool names both when they are not)."""
-    _check(path, vehicle_configs)
+def load(path):
+    """Validated scenario as a dict; raises ScenarioError naming the problem."""
+    _check(path, [])
     with open(path) as f:
         return yaml.safe_load(f) or {}
 

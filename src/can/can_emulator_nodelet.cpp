@@ -24,6 +24,7 @@
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/site.h"
 
 namespace offshore_gnc {
 
@@ -34,7 +35,9 @@ class CanEmulatorNodelet : public nodelet::Nodelet {
     can::SocketCanOptions bus;
     can::EmulatorConfig cfg;
     models::UsvParams jets;
+    geo::LatLonAlt origin;  // the GPS-compass reports the simulated truth in the site's frame
     try {
+      origin = ros_util::readOrigin();
       bus.iface = p.text("interface", "vcan0");
       bus.auto_restart = false;  // a simulated device never restarts the controller
       ros_util::readParams(p, can::EmulatorConfig::table(), cfg);
@@ -45,7 +48,7 @@ class CanEmulatorNodelet : public nodelet::Nodelet {
       NODELET_FATAL("%s", e.what());
       throw;
     }
-    local_ = std::make_unique<geo::LocalNed>(cfg.origin);
+    local_ = std::make_unique<geo::LocalNed>(origin);
     bus_ = std::make_unique<can::SocketCan>(bus, counters_);
     if (!bus_->open()) NODELET_WARN("%s (retrying)", bus_->lastError().c_str());
     gps_ = std::make_unique<can::GpsCompassEmulator>(static_cast<std::uint8_t>(cfg.gps_address));

@@ -82,8 +82,7 @@ const ParamTable<EmulatorConfig>& EmulatorConfig::table() {
           .number("waterjet/command_timeout", &C::command_timeout, 0.05, 10.0, "s",
                   "a unit without commands for this long goes neutral and raises FAULT_COMMS")
           .integer("address/gps", &C::gps_address, 0, 253, "source address of the GPS-compass")
-          .nest("address/", &C::addresses, jet::Addresses::table())
-          .nest("origin/", &C::origin, geo::LatLonAlt::table());
+          .nest("address/", &C::addresses, jet::Addresses::table());
   return t;
 }
 

@@ -87,8 +87,12 @@ int main() {
         navigation::GpsNavigatorConfig::table(), {{"default", navigation::GpsNavigatorConfig()}});
   table("AUV navigation", "`config/navigation/auv_<model>.yaml` -> the AuvNavigation nodelet (USBL + depth + AHRS + DVL).",
         navigation::AuvNavigatorConfig::table(), {{"default", navigation::AuvNavigatorConfig()}});
-  table("Local origin", "`origin/` in the vehicle configs (`config/usv.yaml`, `config/auv_<model>.yaml`).",
-        geo::LatLonAlt::table(), {{"default", geo::LatLonAlt()}}, "origin/");
+  table("Site origin",
+        "`/site/origin` on each vehicle's master, shared by every node (launch/site.launch): `origin:=LAT,LON[,ALT]`, "
+        "or the `origin:` of a site file (`site:=FILE`, e.g. `config/sites/pyhajarvi.yaml`; in simulation the "
+        "scenario). Required: there is no default site. The two vehicles' relays refuse each other when their "
+        "origins differ (docs/relay.md).",
+        geo::LatLonAlt::table(), {}, "origin/");
   table("LiDAR targets", "`config/perception/lidar_usv.yaml` -> the LidarTargets nodelet.",
         perception::LidarConfig::table(), {{"default", perception::LidarConfig()}});
   table("Sonar targets", "`config/perception/sonar_auv.yaml` -> the SonarTargets and WallDetection nodelets.",

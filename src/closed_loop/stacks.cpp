@@ -113,7 +113,6 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
   UsvStackConfig c;
   const std::string vehicle = dir + "/usv.yaml";
   const YAML::Node v = loadYaml(vehicle);
-  readParamsYaml(v, geo::LatLonAlt::table(), c.origin, vehicle, "origin/");
   readParamsYaml(v, navigation::GpsNavigatorConfig::table(), c.navigation, vehicle);
   const std::string lidar = dir + "/perception/lidar_usv.yaml";
   const YAML::Node l = loadYaml(lidar);
@@ -133,7 +132,7 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
 UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
     : cfg_(cfg),
       sim_(scenario, cfg.sim),
-      nav_(cfg.origin, cfg.navigation),
+      nav_(scenario.origin, cfg.navigation),  // in simulation the scenario is the site
       lidar_(cfg.lidar),
       guidance_(cfg.guidance),
       control_(cfg.control),
@@ -276,8 +275,6 @@ AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, co
     throw ConfigError("vehicle_model '" + model + "' is not one of: girona500, acolor");
   AuvStackConfig c;
   c.model = model;
-  const std::string vehicle = dir + "/auv_" + model + ".yaml";
-  readParamsYaml(loadYaml(vehicle), geo::LatLonAlt::table(), c.origin, vehicle, "origin/");
   const std::string sonar = dir + "/perception/sonar_auv.yaml";
   const YAML::Node s = loadYaml(sonar);
   readParamsYaml(s, perception::SonarConfig::table(), c.sonar, sonar);

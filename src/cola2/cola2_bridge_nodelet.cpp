@@ -23,6 +23,7 @@
 #include "offshore_gnc/cola2/mapping.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/site.h"
 
 namespace offshore_gnc {
 
@@ -44,9 +45,7 @@ class Cola2BridgeNodelet : public nodelet::Nodelet {
       neutral_messages_ = p.integer("neutral_messages", 5, 1, 1000);
       startup_timeout_ = p.number("startup_timeout", 10.0, 0, 600);
       base_frame_ = p.text("base_frame", "auv/base_link");
-      o.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
-      o.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
-      o.alt_m = p.number("origin/altitude", 0.0, -1000, 10000);
+      o = ros_util::readOrigin();
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;

@@ -1,5 +1,6 @@
 // WorldFrames: publishes the static map (ENU) -> map_ned (NED) transform and the local frames' geodetic
-// origin, so that every node and rviz agree on one origin. Thin wrapper over geo::LocalNed.
+// origin (the site's, /site/origin: ros/site.h), so that every node and rviz agree on one origin; reports the
+// origin in its map grid (UTM/UPS of its own zone; ETRS-TM35FIN too where ~national_grid asks for it and applies).
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <nodelet/nodelet.h>
@@ -9,9 +10,11 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include <memory>
+#include <vector>
 
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/site.h"
 
 namespace offshore_gnc {
 
@@ -20,18 +23,18 @@ class WorldFramesNodelet : public nodelet::Nodelet {
     ros::NodeHandle& nh = getNodeHandle();
     ros_util::ParamReader p(getPrivateNodeHandle());
     geo::LatLonAlt o;
+    std::vector<geo::GridPoint> grids;  // the origin's UTM/UPS zone, then the national grid when asked for
     try {
-      o.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
-      o.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
-      o.alt_m = p.number("origin/altitude", 0.0, -1000, 10000);
+      o = ros_util::readOrigin();
       world_frame_ = p.text("world_frame", "map");
       ned_frame_ = p.text("ned_frame", "map_ned");
+      grids.push_back(geo::toUtmUps(o));
+      if (p.choice("national_grid", "none", {"none", "etrs-tm35fin"}) == "etrs-tm35fin") grids.push_back(geo::toTm35fin(o));
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
     }
     frame_ = std::make_unique<geo::LocalNed>(o);
-    const geo::Tm35 tm = geo::toTm35fin(o);
 
     geometry_msgs::TransformStamped t;
     t.header.stamp = ros::Time(0);  // static: valid at all times, also under simulated /clock
@@ -56,16 +59,23 @@ class WorldFramesNodelet : public nodelet::Nodelet {
 
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("world_frames");
-    updater_->add("origin", [o, tm](diagnostic_updater::DiagnosticStatusWrapper& s) {
+    updater_->add("origin", [o, grids](diagnostic_updater::DiagnosticStatusWrapper& s) {
       s.summary(diagnostic_msgs::DiagnosticStatus::OK, "origin set");
       s.add("latitude_deg", o.lat_deg);
       s.add("longitude_deg", o.lon_deg);
-      s.add("tm35fin_easting_m", tm.easting_m);
-      s.add("tm35fin_northing_m", tm.northing_m);
+      s.add("altitude_m", o.alt_m);
+      s.add("grid", geo::gridName(grids[0]));
+      s.add("grid_easting_m", grids[0].easting_m);
+      s.add("grid_northing_m", grids[0].northing_m);
+      if (grids.size() > 1) {
+        s.add("tm35fin_easting_m", grids[1].easting_m);
+        s.add("tm35fin_northing_m", grids[1].northing_m);
+      }
     });
     timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
-    NODELET_INFO("local origin %.6f N %.6f E (TM35FIN %.1f E %.1f N), %s -> %s", o.lat_deg, o.lon_deg,
-                 tm.easting_m, tm.northing_m, world_frame_.c_str(), ned_frame_.c_str());
+    NODELET_INFO("local origin %.6f N %.6f E (%s %.1f E %.1f N), %s -> %s", o.lat_deg, o.lon_deg,
+                 geo::gridName(grids[0]).c_str(), grids[0].easting_m, grids[0].northing_m, world_frame_.c_str(),
+                 ned_frame_.c_str());
   }
 
   std::string world_frame_, ned_frame_;

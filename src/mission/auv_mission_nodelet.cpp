@@ -14,6 +14,7 @@
 #include "offshore_gnc/mission/mission.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/site.h"
 #include "ros_mission.h"
 
 namespace offshore_gnc {
@@ -22,7 +23,6 @@ class AuvMissionNodelet : public nodelet::Nodelet {
   void onInit() override {
     ros::NodeHandle& nh = getNodeHandle();
     ros_util::ParamReader p(getPrivateNodeHandle());
-    ros_util::ParamReader vehicle(nh);
     mission::AuvMissionParams mp;
     geo::LatLonAlt origin;
     try {
@@ -31,8 +31,7 @@ class AuvMissionNodelet : public nodelet::Nodelet {
       // loaded into ~scenario (its auv/coverage section)
       const bool sc = getPrivateNodeHandle().hasParam("scenario/auv/coverage");
       ros_util::readParams(p, mission::CoverageArea::table(), mp.coverage, sc ? "scenario/auv/coverage/" : "coverage/");
-      origin.lat_deg = vehicle.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
-      origin.lon_deg = vehicle.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
+      origin = ros_util::readOrigin();
       mission_ = std::make_unique<mission::AuvMission>(mp);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

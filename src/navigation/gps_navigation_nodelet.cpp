@@ -16,6 +16,7 @@
 #include "offshore_gnc/navigation/gps_navigator.h"
 #include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/site.h"
 
 namespace offshore_gnc {
 
@@ -26,9 +27,7 @@ class GpsNavigationNodelet : public nodelet::Nodelet {
     geo::LatLonAlt o;
     navigation::GpsNavigatorConfig cfg;
     try {
-      o.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -89, 89);
-      o.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
-      o.alt_m = p.number("origin/altitude", 0.0, -500, 9000);
+      o = ros_util::readOrigin();
       const auto a = p.numbers("antenna", {0.0, 0.0, -2.5}, 3, -50, 50);
       cfg.antenna = {a[0], a[1], a[2]};
       cfg.heading_timeout = p.number("heading_timeout", cfg.heading_timeout, 0.01, 60);

@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <set>
@@ -24,7 +26,6 @@ namespace offshore_gnc {
 namespace relay {
 
 namespace {
-constexpr std::uint16_t kVersion = 2;  // 2: the hello carries the UDP port
 constexpr std::size_t kOutBufferLimit = 8u << 20;  // pump reliable frames only while below this
 constexpr std::size_t kNonceSize = 16;
 // Limits against a flooding peer (docs/relay.md, "Security model"): frames before an authenticated hello are
@@ -76,6 +77,8 @@ void validate(RelayConfig& c) {
   requireRange("queue/max_bytes", double(c.queue_bytes), 1024, 4e9);
   requireRange("max_frame_bytes", double(c.max_frame_bytes), 1024, 1u << 30);
   requireRange("max_datagram_bytes", double(c.max_datagram_bytes), 512, 65000);
+  requireRange("origin_tolerance", c.origin_tolerance, 0.0, 1e4);
+  if (c.origin) geo::checkLatLonAlt(*c.origin);
   std::set<std::string> names;
   for (const auto& p : c.peers) {
     if (p.name.empty() || p.name == c.name) throw configError("peer name '" + p.name + "' is empty or our own");
@@ -136,6 +139,7 @@ struct Engine::Peer {
   double next_ping = 0.0;
   std::uint32_t reconnects = 0;
   std::uint64_t rejected = 0;
+  std::string refused;  // PeerStatus::refused
   // receive side: the peer's session and the last reliable sequence delivered from it
   std::uint64_t rx_session = 0, rx_seq = 0, acked_seq = 0;
   std::deque<std::pair<double, std::uint64_t>> pending_acks;  // (delivery time, seq) not yet acknowledged
@@ -471,9 +475,24 @@ void Engine::flush(Conn& c) {
   }
 }
 
+std::string Engine::siteMismatch(const std::optional<geo::LatLonAlt>& theirs) const {
+  if (!theirs || !cfg_.origin) return "";
+  const geo::LatLonAlt& ours = *cfg_.origin;
+  const bool finite = std::isfinite(theirs->lat_deg) && std::isfinite(theirs->lon_deg) && std::isfinite(theirs->alt_m);
+  const double apart = finite ? std::hypot(geo::surfaceDistance(ours, *theirs), theirs->alt_m - ours.alt_m) : NAN;
+  if (finite && apart <= cfg_.origin_tolerance) return "";
+  char b[400];
+  std::snprintf(b, sizeof b,
+                "its origin (%.7f, %.7f, %.1f m) is %.1f m from %s's (%.7f, %.7f, %.1f m), over the %.1f m tolerance: "
+                "both vehicles must run on one site origin (the same site:= file or origin:=LAT,LON[,ALT])",
+                theirs->lat_deg, theirs->lon_deg, theirs->alt_m, apart, cfg_.name.c_str(), ours.lat_deg, ours.lon_deg,
+                ours.alt_m, cfg_.origin_tolerance);
+  return b;
+}
+
 void Engine::sendHello(Conn& c) {
   Writer w;
-  w.u16(kVersion);
+  w.u16(kWireVersion);
   w.str(cfg_.name);
   w.u64(session_);
   w.bytes(reinterpret_cast<const std::uint8_t*>(c.nonce.data()), kNonceSize);
@@ -483,6 +502,12 @@ void Engine::sendHello(Conn& c) {
   w.u64(ack_session);
   w.u64(ack_seq);
   w.u16(static_cast<std::uint16_t>(udp_fd_ >= 0 ? udp_port_ : 0));  // 0: no UDP here
+  w.u8(cfg_.origin ? 1 : 0);
+  if (cfg_.origin) {
+    w.f64(cfg_.origin->lat_deg);
+    w.f64(cfg_.origin->lon_deg);
+    w.f64(cfg_.origin->alt_m);
+  }
   FrameHeader h;
   h.type = FrameType::Hello;
   c.tx_auth = psk_;  // the hello is authenticated with the PSK itself
@@ -589,6 +614,7 @@ void Engine::establish(Conn& c, double now) {
   if (p.conn && p.conn != &c) closeConn(*p.conn, "replaced by a new connection");
   c.established = true;
   p.conn = &c;
+  p.refused.clear();
   if (p.ever_up) ++p.reconnects;
   p.ever_up = true;
   p.backoff = cfg_.backoff_min;
@@ -643,7 +669,15 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
     r.u64(c.hello_ack_seq);
     std::uint16_t udp_port = 0;
     r.u16(udp_port);
-    if (!r.ok() || version != kVersion) {
+    std::uint8_t has_origin = 0;
+    std::optional<geo::LatLonAlt> origin;
+    if (r.u8(has_origin) && has_origin) {
+      origin.emplace();
+      r.f64(origin->lat_deg);
+      r.f64(origin->lon_deg);
+      r.f64(origin->alt_m);
+    }
+    if (!r.ok() || version != kWireVersion) {
       counters_.increment("frames_malformed");
       closeConn(c, "bad hello");
       return;
@@ -655,6 +689,14 @@ void Engine::handleFrame(Conn& c, Frame& f, double now, std::vector<Delivery>& o
       counters_.increment("peer_unknown");
       log(2, "refused a connection from '" + name + "': not a configured peer of " + cfg_.name);
       closeConn(c, "unknown peer");
+      return;
+    }
+    const std::string site = siteMismatch(origin);
+    if (!site.empty()) {
+      counters_.increment("origin_mismatch");
+      peer->refused = "refused " + name + ": " + site;
+      if (peer->log_limit.allow(nowS())) log(2, peer->refused);
+      closeConn(c, "origin mismatch");
       return;
     }
     c.peer = peer;
@@ -1043,6 +1085,7 @@ std::vector<PeerStatus> Engine::status() {
     s.reconnects = p.reconnects;
     s.frames_rejected = p.rejected;
     s.queued = p.queue.size();
+    s.refused = p.refused;
     const double dt = p.last_status > 0 ? now - p.last_status : 0.0;
     p.last_status = now;
     for (std::size_t i = 0; i < cfg_.topics.size(); ++i) {

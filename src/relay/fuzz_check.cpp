@@ -21,7 +21,6 @@ namespace offshore_gnc {
 namespace relay {
 
 namespace {
-constexpr std::uint16_t kWireVersion = 2;
 constexpr std::size_t kNonce = 16;
 const char* const kWrongKey = "a-key-the-engine-does-not-have-0123456789";
 
@@ -57,6 +56,7 @@ std::vector<std::uint8_t> ScriptedPeer::helloPayload(std::uint16_t version, cons
   w.u64(ack_session);
   w.u64(ack_seq);
   w.u16(udp_port);
+  w.u8(0);  // no site origin: not checked
   return w.b;
 }
 

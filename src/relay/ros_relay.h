@@ -17,6 +17,7 @@
 #include "offshore_gnc/relay/key.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/site.h"
 
 namespace offshore_gnc {
 
@@ -83,6 +84,8 @@ inline relay::RelayConfig loadConfig(const ros::NodeHandle& pnh) {
   c.max_frame_bytes = static_cast<std::size_t>(p.number("max_frame_bytes", 32.0 * (1 << 20), 1024, 1 << 30));
   c.udp = p.flag("udp", true);
   c.max_datagram_bytes = static_cast<std::size_t>(p.number("max_datagram_bytes", 60000, 512, 65000));
+  c.origin = ros_util::readOrigin();  // announced at link-up: the peer vehicle must run on the same site
+  c.origin_tolerance = p.number("origin_tolerance", c.origin_tolerance, 0.0, 1e4);
   forEachEntry(pnh, "peers", [&c](XmlRpc::XmlRpcValue& e, const std::string& where) {
     relay::PeerConfig pc;
     pc.name = member(e, "name", where, true);
@@ -201,7 +204,9 @@ class RelayRos {
         s.summary(diagnostic_msgs::DiagnosticStatus::OK, "all links up");
       else
         s.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(last_status_.size() - up) + " link(s) down");
-      ros_util::addCounters(s, counters_, {"frames_bad_auth", "frames_malformed", "frames_oversized", "frames_replayed",
+      for (const auto& l : last_status_)
+        if (!l.refused.empty()) s.mergeSummary(diagnostic_msgs::DiagnosticStatus::ERROR, l.refused);
+      ros_util::addCounters(s, counters_, {"origin_mismatch", "frames_bad_auth", "frames_malformed", "frames_oversized", "frames_replayed",
                                            "unknown_topic", "queue_overflow", "refused_type_mismatch", "udp_datagrams",
                                            "udp_lost", "udp_malformed", "udp_unknown_source", "connections_refused",
                                            "connections_evicted", "announces_over_limit", "announces_repeated",
@@ -293,6 +298,7 @@ class RelayRos {
       m.loss = ps.loss;
       m.reconnects = ps.reconnects;
       m.frames_rejected = ps.frames_rejected;
+      m.refused = ps.refused;
       for (const auto& t : ps.topics) {
         TopicStats ts;
         ts.topic = t.topic;

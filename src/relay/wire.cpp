@@ -135,6 +135,11 @@ void Writer::u64(std::uint64_t v) {
   b.resize(b.size() + 8);
   put64(&b[b.size() - 8], v);
 }
+void Writer::f64(double v) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  u64(bits);
+}
 void Writer::str(const std::string& s) {
   u32(static_cast<std::uint32_t>(s.size()));
   b.insert(b.end(), s.begin(), s.end());
@@ -163,6 +168,12 @@ bool Reader::u64(std::uint64_t& v) {
   std::uint8_t t[8];
   if (!bytes(t, 8)) return false;
   v = get64(t);
+  return true;
+}
+bool Reader::f64(double& v) {
+  std::uint64_t bits = 0;
+  if (!u64(bits)) return false;
+  std::memcpy(&v, &bits, sizeof v);
   return true;
 }
 bool Reader::str(std::string& s, std::size_t max_len) {

@@ -14,6 +14,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -24,6 +25,7 @@
 #include "offshore_gnc/models/state.h"
 #include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/site.h"
 #include "offshore_gnc/sim/scenario.h"
 
 namespace offshore_gnc {
@@ -41,6 +43,17 @@ inline RunSettings readRunSettings(const ros_util::ParamReader& p, int default_s
   const std::string path = p.text("scenario", "");
   if (path.empty()) throw ConfigError("parameter '~scenario' (path of the scenario file) is missing");
   r.scenario = sim::loadScenario(path);
+  // The simulated world is placed by the scenario's origin, every other node by the site's: both must be one.
+  const geo::LatLonAlt site = ros_util::readOrigin();
+  const double apart = geo::surfaceDistance(site, r.scenario.origin);
+  if (apart > 1.0) {
+    char msg[320];
+    std::snprintf(msg, sizeof msg,
+                  "scenario '%s' has its origin at (%.6f, %.6f) but the site's /site/origin is (%.6f, %.6f), %.0f m "
+                  "apart: in simulation leave origin:= and site:= unset (the scenario is the site) or set them to it",
+                  path.c_str(), r.scenario.origin.lat_deg, r.scenario.origin.lon_deg, site.lat_deg, site.lon_deg, apart);
+    throw ConfigError(msg);
+  }
   r.rate = p.number("rate", 1.0, 0.0, 10000.0);
   r.lockstep = p.flag("lockstep", false);
   r.dt = p.number("dt", 0.01, 1e-4, 0.1);

@@ -92,7 +92,7 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
   const YAML::Node o = root["origin"];
   if (!o) r.fail("origin", "is missing");
   r.keys(o, "origin", {"latitude", "longitude", "altitude"});
-  s.origin.lat_deg = r.number(o, "origin", "latitude", -89.0, 89.0);
+  s.origin.lat_deg = r.number(o, "origin", "latitude", -90.0, 90.0);
   s.origin.lon_deg = r.number(o, "origin", "longitude", -180.0, 180.0);
   s.origin.alt_m = r.opt(o, "origin", "altitude", 0.0, -500.0, 9000.0);
 

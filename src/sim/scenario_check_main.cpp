@@ -1,8 +1,7 @@
-// scenario_check FILE [--faults PLAN] [VEHICLE_CONFIG...]: validates a scenario before anything starts (the
-// simulator's strict loader plus the mission section) and, given the vehicles' configs, that they share its local
-// origin: the simulators place the world by the scenario's origin, the navigation by the vehicle's, so two origins
-// apart would put every target off by their distance. --faults checks a fault plan (offshore_gnc::FaultPlan) and
-// lists its faults with their vehicles and the supervisor's rule that answers each. Prints a one-line JSON summary, or the error and exits 2.
+// scenario_check FILE [--faults PLAN]: validates a scenario before anything starts (the simulator's strict loader
+// plus the mission section). --faults checks a fault plan (offshore_gnc::FaultPlan) and lists its faults with their
+// vehicles and the supervisor's rule that answers each. Prints a one-line JSON summary (with the scenario's origin,
+// which is the site of every node in simulation), or the error and exits 2.
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -11,9 +10,7 @@
 #include <string>
 
 #include "offshore_gnc/common/faults.h"
-#include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"
-#include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/sim/scenario.h"
 
 using namespace offshore_gnc;
@@ -37,30 +34,11 @@ void checkMission(const std::string& path) {
   if (m["hold_time"]) requireRange("mission.hold_time", m["hold_time"].as<double>(), 0.0, 3600.0);
 }
 
-constexpr double kOriginTolerance = 5.0;  // [m] GPS-grade agreement; beyond it every position would be offset
-
-void checkOrigin(const sim::Scenario& s, const std::string& scenario, const std::string& config) {
-  geo::LatLonAlt o;
-  const YAML::Node root = YAML::LoadFile(config);
-  if (!root["origin"]) throw ConfigError("vehicle config '" + config + "': key 'origin' is missing");
-  readParamsYaml(root, geo::LatLonAlt::table(), o, config, "origin/");
-  const double d = geo::surfaceDistance(s.origin, o);
-  if (d > kOriginTolerance) {
-    char msg[512];
-    const bool km = d >= 10000.0;
-    std::snprintf(msg, sizeof msg,
-                  "scenario '%s' has its origin at (%.6f, %.6f) but vehicle config '%s' at (%.6f, %.6f), %.1f %s "
-                  "apart (tolerance %.0f m): every component must run on one origin; set the two the same",
-                  scenario.c_str(), s.origin.lat_deg, s.origin.lon_deg, config.c_str(), o.lat_deg, o.lon_deg,
-                  km ? d / 1000.0 : d, km ? "km" : "m", kOriginTolerance);
-    throw ConfigError(msg);
-  }
-}
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: scenario_check FILE.yaml [--faults PLAN] [VEHICLE_CONFIG.yaml...]\n");
+    std::fprintf(stderr, "usage: scenario_check FILE.yaml [--faults PLAN]\n");
     return 2;
   }
   try {
@@ -72,7 +50,7 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw ConfigError("--faults needs a plan, e.g. --faults 'usbl@150+60'");
         faults = FaultPlan::parse(argv[++i]);
       } else {
-        checkOrigin(s, argv[1], argv[i]);
+        throw ConfigError(std::string("unknown argument '") + argv[i] + "' (usage: scenario_check FILE.yaml [--faults PLAN])");
       }
     }
     std::string listed;
@@ -86,8 +64,10 @@ int main(int argc, char** argv) {
                     findFaultKind(f.name)->rule, f.start, end);
       listed += one;
     }
-    std::printf("{\"scenario\": \"%s\", \"obstacles\": %zu, \"targets\": %zu, \"faults\": [%s], \"ok\": true}\n",
-                s.name.c_str(), s.world.buoys.size() + s.world.vessels.size(), s.world.targets.size(), listed.c_str());
+    std::printf("{\"scenario\": \"%s\", \"origin\": [%.9f, %.9f, %.3f], \"obstacles\": %zu, \"targets\": %zu, "
+                "\"faults\": [%s], \"ok\": true}\n",
+                s.name.c_str(), s.origin.lat_deg, s.origin.lon_deg, s.origin.alt_m,
+                s.world.buoys.size() + s.world.vessels.size(), s.world.targets.size(), listed.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

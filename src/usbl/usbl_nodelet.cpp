@@ -23,6 +23,7 @@
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/site.h"
 #include "offshore_gnc/usbl/positioning.h"
 #include "offshore_gnc/usbl/seatrac.h"
 #include "offshore_gnc/usbl/serial_port.h"
@@ -60,9 +61,7 @@ class UsblNodelet : public nodelet::Nodelet {
       water_density_ = p.number("water_density", 1000.0, 990, 1050);
       surface_pressure_ = p.number("surface_pressure", 101325.0, 80000, 120000);
       frame_id_ = p.text("frame_id", "usv/usbl");
-      o.lat_deg = p.number("origin/latitude", geo::kPyhajarviOrigin.lat_deg, -90, 90);
-      o.lon_deg = p.number("origin/longitude", geo::kPyhajarviOrigin.lon_deg, -180, 180);
-      o.alt_m = p.number("origin/altitude", 0.0, -1000, 10000);
+      o = ros_util::readOrigin();
       positioner_ = std::make_unique<usbl::Positioner>(usbl_ros::readMounting(p), lim);
       port_ = std::make_unique<usbl::SerialPort>(port, baud, retry_);
     } catch (const ConfigError& e) {

@@ -18,8 +18,8 @@ def _port_free(port):
 
 
 def _frames(master, lat, lon):
-    return master.run(["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/WorldFrames",
-                       "_origin/latitude:=%f" % lat, "_origin/longitude:=%f" % lon], name="frames")
+    master.set_param("/site/origin", "%f,%f" % (lat, lon))
+    return master.run(["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/WorldFrames"], name="frames")
 
 
 def test_two_masters_are_isolated():

@@ -14,6 +14,7 @@ from offshore_gnc.testing import MasterSet
 from offshore_gnc.testing.ardusub_peer import FakeArduSub, free_udp_port
 
 STARTUP = 4.0  # [s] startup_timeout for the autopilot / COLA2
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
 @pytest.fixture
@@ -29,6 +30,8 @@ def sonar_tty(tmp_path):
 
 def launch(ms, name, **args):
     args.setdefault("relay", "false")
+    args.setdefault("site", os.path.join(REPO, "config", "sites", "pyhajarvi.yaml"))  # a team's site file
+    args = {k: v for k, v in args.items() if v is not None}
     return ms["auv"].run(["roslaunch", "offshore_gnc", "auv.launch", "sim:=false"] +
                          ["%s:=%s" % kv for kv in args.items()], name=name)
 
@@ -122,6 +125,13 @@ def test_girona500_without_cola2_fails_naming_it(ms, sonar_tty):
     p = launch(ms, "g500_nocola2", vehicle_model="girona500", sonar_port=sonar_tty, startup_timeout=STARTUP)
     assert_fails_naming(ms, p, "g500_nocola2", "no COLA2 navigation on /girona500/navigator/navigation",
                         "REQUIRED process [auv/cola2_bridge")
+
+
+def test_without_a_site_nothing_starts_and_the_launch_says_how_to_set_one(ms, sonar_tty):
+    """On hardware the origin comes from the operation (site:=FILE or origin:=LAT,LON[,ALT]), never from a default
+    that would put the vehicle in Finland."""
+    p = launch(ms, "g500_nosite", vehicle_model="girona500", sonar_port=sonar_tty, startup_timeout=STARTUP, site=None)
+    assert_fails_naming(ms, p, "g500_nosite", "no site origin", "origin:=LAT,LON[,ALT]", "REQUIRED process [world_frames")
 
 
 def test_girona500_without_the_sonar_fails_naming_it(ms):

@@ -67,12 +67,14 @@ def test_default_mission_succeeds(tmp_path):
         shutil.copy(os.path.join(str(tmp_path / "default"), "rviz_usv.png"), os.environ["OFFSHORE_GNC_SAVE_SCREENSHOT"])
 
 
-def test_acolor_mission_succeeds_on_usbl(tmp_path):
+def test_acolor_mission_succeeds_on_usbl_at_another_site(tmp_path):
     """The aColor as its own vehicle: Table 4.2's LOS with R = 3 L_AUV, its yaw and heave PIDs, the constant surge
-    PWM for guidance's speed, navigation on USBL fixes and its commands (no DVL)."""
-    r, m = run("pyhajarvi.yaml", tmp_path / "acolor", "--auv-model", "acolor")
+    PWM for guidance's speed, navigation on USBL fixes and its commands (no DVL). At Hobart (southern and eastern
+    hemispheres): the scenario's origin reaches every node of both vehicles, no vehicle file names a site."""
+    r, m = run("hobart.yaml", tmp_path / "acolor", "--auv-model", "acolor")
     assert r.returncode == 0, r.stdout[-3000:]
     assert m["success"] is True and m["auv_final_phase"] == "TARGET_FOUND", m
+    assert m["site"]["latitude"] == -42.8821 and m["site"]["longitude"] == 147.3514, m["site"]
     assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
     assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < ACOLOR_MAX_NAV_RMSE_M, m
     assert m["auv_xte_samples"] > 500 and m["auv_rmse_m"] is not None and m["auv_rmse_m"] < ACOLOR_MAX_AUV_RMSE_M, m
@@ -82,20 +84,6 @@ def test_acolor_mission_succeeds_on_usbl(tmp_path):
     with rosbag.Bag(os.path.join(str(tmp_path / "acolor"), "auv.bag")) as bag:
         counts = {t: bag.get_message_count(t) for t in ("/auv/rc_channels", "/auv/thruster_setpoints")}
     assert counts["/auv/rc_channels"] > 1000 and counts["/auv/thruster_setpoints"] == 0, counts
-
-
-def test_a_scenario_on_another_origin_is_refused_naming_both(tmp_path):
-    """The default scenario moved to the Bay of Palma, 2,830 km from the vehicle configs' Pyhajarvi origin: every
-    position would be offset by that, so the job refuses before starting anything, naming both origins."""
-    text = open(os.path.join(REPO, "config", "scenarios", "pyhajarvi.yaml")).read()
-    moved = text.replace("origin: {latitude: 61.4507, longitude: 23.7270", "origin: {latitude: 39.5500, longitude: 2.6300")
-    assert moved != text
-    sc = tmp_path / "palma.yaml"
-    sc.write_text(moved)
-    r = run_job([sys.executable, JOB, "--scenario", str(sc), "--out", str(tmp_path / "palma"), "--quiet"], 120)
-    assert r.returncode == 2, r.stdout[-3000:]
-    assert "refused" in r.stdout and "39.550000" in r.stdout and "61.450700" in r.stdout and "km apart" in r.stdout
-    assert not (tmp_path / "palma" / "logs").exists()  # nothing was started
 
 
 def test_no_target_scenario_ends_with_no_target(tmp_path):

@@ -24,6 +24,7 @@ MARKERS = {"markers": [{"header": {"frame_id": "map_ned"}, "ns": "test", "id": 1
 def test_rviz_draws_path_and_markers(tmp_path):
     with MasterSet(["usv"]) as ms:
         m = ms["usv"]
+        m.set_param("/site/origin", "61.4507,23.7270")
         m.run(["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/WorldFrames"], name="frames")
         m.publish("/usv/guidance/planned_path", "nav_msgs/Path", PATH_MSG)
         m.publish("/usv/markers", "visualization_msgs/MarkerArray", MARKERS)

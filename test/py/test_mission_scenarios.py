@@ -1,19 +1,22 @@
 """Every shipped scenario passes the check the main job runs first; bad ones are refused naming the key."""
 import glob
+import json
 import os
 import subprocess
 import sys
 
 import pytest
+import yaml
 
+from offshore_gnc import tools
 from offshore_gnc.testing import run_job
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SCENARIOS = sorted(glob.glob(os.path.join(REPO, "config", "scenarios", "*.yaml")))
 
 
-def check(path, *configs):
-    r = subprocess.run(["rosrun", "offshore_gnc", "scenario_check", path] + list(configs), stdout=subprocess.PIPE,
+def check(path, *args):
+    r = subprocess.run([tools.path("scenario_check"), path] + list(args), stdout=subprocess.PIPE,
                        stderr=subprocess.STDOUT, text=True, timeout=60)
     return r.returncode, r.stdout
 
@@ -52,20 +55,44 @@ def test_main_job_refuses_a_bad_scenario_before_starting(tmp_path):
     assert not (tmp_path / "out" / "logs").exists()  # nothing was started
 
 
-def test_a_vehicle_config_on_another_origin_is_refused_naming_both(tmp_path):
-    """The simulators place the world by the scenario's origin and the navigation by the vehicle's: two origins
-    apart would offset every target by their distance (a target computed 2,520 km away), so the check refuses."""
-    default = os.path.join(REPO, "config", "scenarios", "pyhajarvi.yaml")
-    usv = os.path.join(REPO, "config", "usv.yaml")
-    rc, out = check(default, usv, os.path.join(REPO, "config", "auv_girona500.yaml"))
-    assert rc == 0, out
-    elsewhere = tmp_path / "usv_palma.yaml"
-    elsewhere.write_text(open(usv).read().replace("latitude: 61.4507", "latitude: 39.5500")
-                         .replace("longitude: 23.7270", "longitude: 2.6300"))
-    rc, out = check(default, str(elsewhere))
+@pytest.mark.parametrize("origin,needle", [
+    (None, "key 'origin' is missing"),
+    ("{latitude: .nan, longitude: 23.7}", "origin.latitude"),
+    ("{latitude: 61.4, longitude: .inf}", "origin.longitude"),
+    ("{latitude: 91, longitude: 23.7}", "origin.latitude"),
+    ("{latitude: 61.4}", "origin.longitude"),
+    ("{latitude: sixty, longitude: 23.7}", "origin.latitude"),
+])
+def test_an_origin_missing_or_not_finite_is_refused_naming_the_key(tmp_path, origin, needle):
+    base = open(os.path.join(REPO, "config", "scenarios", "pyhajarvi.yaml")).read().splitlines()
+    lines = [l for l in base if not l.startswith("origin:")] + (["origin: " + origin] if origin else [])
+    p = tmp_path / "bad_origin.yaml"
+    p.write_text("\n".join(lines) + "\n")
+    rc, out = check(str(p))
     assert rc != 0
-    assert "61.450700" in out and "39.550000" in out and "km apart" in out, out
-    near = tmp_path / "usv_near.yaml"  # 1.1 m north: the same origin within GPS accuracy
-    near.write_text(open(usv).read().replace("latitude: 61.4507", "latitude: 61.45071"))
-    rc, out = check(default, str(near))
+    assert needle in out, out
+
+
+SITES = {  # the shipped scenarios away from the thesis' lake, and where they must be
+    "monterey.yaml": lambda la, lo: la > 0 and lo < 0,
+    "hobart.yaml": lambda la, lo: la < 0 and lo > 0,
+    "stanley.yaml": lambda la, lo: la < 0 and lo < 0,
+    "taveuni.yaml": lambda la, lo: abs(abs(lo) - 180.0) < 0.01,
+    "svalbard.yaml": lambda la, lo: la > 70,
+}
+
+
+@pytest.mark.parametrize("name", sorted(SITES))
+def test_sites_on_every_side_of_the_earth_share_the_default_geometry(name):
+    """The site scenarios put the default mission (start poses, coverage, buoy, target, current) on another coast:
+    only the origin and the name may differ, so their figures compare with the default's."""
+    path = os.path.join(REPO, "config", "scenarios", name)
+    rc, out = check(path)
     assert rc == 0, out
+    lat, lon, _ = json.loads(out.strip().splitlines()[-1])["origin"]
+    assert SITES[name](lat, lon), (name, lat, lon)
+    site = yaml.safe_load(open(path))
+    default = yaml.safe_load(open(os.path.join(REPO, "config", "scenarios", "pyhajarvi.yaml")))
+    for d in (site, default):
+        d.pop("origin"), d.pop("name")
+    assert site == default

@@ -45,8 +45,10 @@ def _probe(argv):
 
 
 # ------------------------------------------------------------------------------------------- helpers
-def start_relay(master, cfg, name="relay", nodelet=False):
-    """The relay_node executable (as launch/relay.launch), or the same code as the Relay nodelet."""
+def start_relay(master, cfg, name="relay", nodelet=False, origin="61.4507,23.7270"):
+    """The relay_node executable (as launch/relay.launch), or the same code as the Relay nodelet, on a master
+    whose site origin is `origin` (launch/site.launch's /site/origin)."""
+    master.set_param("/site/origin", origin)
     path = os.path.join(master.log_dir, "%s-%s.yaml" % (master.name, name))
     with open(path, "w") as f:
         yaml.safe_dump(cfg, f)
@@ -199,6 +201,29 @@ def test_wrong_key_delivers_nothing_and_counts():
         st = link_status(usv)
         assert not st["up"]
         assert "failed authentication" in log_text(usv, "relay")
+
+
+def test_vehicles_on_different_site_origins_refuse_each_other_naming_both():
+    """Two masters started on different origins (a USV at Pyhäjärvi, an AUV whose site file says Hobart): each relay
+    refuses the other at link-up, /relay/link_status and the log name both origins, and no /target crosses, which
+    the USV would otherwise have placed 14,000 km off."""
+    port = free_port()
+    with MasterSet(["usv", "auv"]) as ms:
+        usv, auv = ms["usv"], ms["auv"]
+        start_relay(usv, cfg("usv", [{"name": "auv"}],
+                             [{"topic": "/target", "type": "std_msgs/String", "direction": "in"}], listen_port=port))
+        start_relay(auv, cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
+                             [{"topic": "/target", "type": "std_msgs/String", "direction": "out"}]),
+                    origin="-42.8821,147.3514")
+        auv.publish("/target", "std_msgs/String", {"data": "a target in the wrong frame"})
+        for master, other in ((usv, "auv"), (auv, "usv")):
+            assert wait_until(lambda: link_status(master).get("refused"), 20), log_text(master, "relay")
+            st = link_status(master)
+            assert not st["up"]
+            assert "refused %s" % other in st["refused"], st["refused"]
+            assert "61.4507" in st["refused"] and "-42.8821" in st["refused"], st["refused"]
+            assert "61.4507" in log_text(master, "relay") and "-42.8821" in log_text(master, "relay")
+        assert "/target" not in usv.topics()
 
 
 def test_receiver_restart_mid_stream_loses_nothing():

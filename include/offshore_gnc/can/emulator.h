@@ -61,7 +61,6 @@ struct EmulatorConfig {
   double command_timeout = 0.5;    // s without commands: the unit goes neutral and raises FAULT_COMMS
   int gps_address = 0x40;
   jet::Addresses addresses;
-  geo::LatLonAlt origin = geo::kPyhajarviOrigin;  // must match WorldFrames' origin
   static const ParamTable<EmulatorConfig>& table();
 };
 

@@ -54,7 +54,6 @@ class StackSupervisor {
 // ------------------------------------------------------------------------------------------------- USV
 struct UsvStackConfig {
   sim::UsvSimulation::Config sim;     // sim_usv.launch: seed 1, the simulator's defaults
-  geo::LatLonAlt origin;              // config/usv.yaml: the navigation's local frame
   navigation::GpsNavigatorConfig navigation;  // config/usv.yaml
   perception::LidarConfig lidar;      // config/perception/lidar_usv.yaml
   double pose_timeout = 0.1;          // tf_timeout: a frame waits this long for the pose at its stamp [s]
@@ -123,7 +122,6 @@ class UsvStack {
 struct AuvStackConfig {
   std::string model = "girona500";    // girona500 | acolor (auv.launch vehicle_model)
   sim::AuvSimulation::Config sim;     // sim_auv.launch: seed 2, the simulator's defaults, the model's params
-  geo::LatLonAlt origin;              // config/auv_<model>.yaml
   perception::SonarConfig sonar;      // config/perception/sonar_auv.yaml
   double pose_timeout = 0.1;          // tf_timeout
   guidance::GuidanceParams guidance;  // config/guidance/<model>.yaml

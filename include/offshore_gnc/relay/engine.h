@@ -9,11 +9,13 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/relay/policy.h"
 #include "offshore_gnc/relay/wire.h"
 
@@ -53,6 +55,11 @@ struct RelayConfig {
   bool sim = false;
   double heartbeat_period = 0.2, link_timeout = 1.0, backoff_min = 0.1, backoff_max = 2.0;
   double ack_delay = 0.5;  // acks trail delivery to ROS by this long (crash window covered by resends)
+  // The site's origin, announced in the hello: a peer whose origin lies farther than origin_tolerance [m] is
+  // refused, both named (two vehicles on different origins would misplace every position they exchange). Unset
+  // here or at the peer: not checked.
+  std::optional<geo::LatLonAlt> origin;
+  double origin_tolerance = 1.0;
   std::size_t queue_messages = 1000, queue_bytes = 64u << 20, max_frame_bytes = 32u << 20;
   std::vector<PeerConfig> peers;
   std::vector<TopicConfig> topics;
@@ -84,6 +91,7 @@ struct PeerStatus {
   std::uint32_t reconnects = 0;
   std::uint64_t frames_rejected = 0;
   std::size_t queued = 0;
+  std::string refused;  // why the peer's last hello was refused (e.g. another origin); empty once a link is up
   std::vector<TopicStatus> topics;
 };
 
@@ -144,6 +152,8 @@ class Engine {
   void onDatagrams(std::vector<Delivery>& out);
   void handleData(Peer& p, Frame& f, std::vector<Delivery>& out);
   void sendHello(Conn& c);
+  // Why a peer announcing `theirs` as its origin must be refused; empty when it agrees (or either has none).
+  std::string siteMismatch(const std::optional<geo::LatLonAlt>& theirs) const;
   void sendAnnounce(Conn& c, std::size_t index);
   void pump(Peer& p);
   void sendAcks(double now);

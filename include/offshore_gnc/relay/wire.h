@@ -10,6 +10,10 @@
 namespace offshore_gnc {
 namespace relay {
 
+// The hello's protocol version; peers of another version are refused. 2: the hello carries the UDP port;
+// 3: and the site's origin (a flag, then latitude, longitude, altitude as f64).
+constexpr std::uint16_t kWireVersion = 3;
+
 constexpr std::uint32_t kMagic = 0x3152474F;  // "OGR1"
 constexpr std::size_t kHeaderSize = 32;
 constexpr std::size_t kTagSize = 32;  // HMAC-SHA256
@@ -83,6 +87,7 @@ class Writer {
   void u16(std::uint16_t v);
   void u32(std::uint32_t v);
   void u64(std::uint64_t v);
+  void f64(double v);              // IEEE 754 bits as u64
   void str(const std::string& s);  // u32 length + bytes
   void bytes(const std::uint8_t* p, std::size_t n) { b.insert(b.end(), p, p + n); }
   std::vector<std::uint8_t> b;
@@ -96,6 +101,7 @@ class Reader {
   bool u16(std::uint16_t& v);
   bool u32(std::uint32_t& v);
   bool u64(std::uint64_t& v);
+  bool f64(double& v);
   bool str(std::string& s, std::size_t max_len = 1 << 20);
   bool bytes(std::uint8_t* out, std::size_t n);
   bool ok() const { return ok_; }

@@ -4,6 +4,7 @@ Each vehicle of the co-operative system has its own master (thesis chapter 5), s
 more than the one master rostest gives. Usage:
 
     with MasterSet(["usv", "auv"]) as ms:
+        ms["usv"].set_param("/site/origin", "61.4507,23.7270")  # the site (launch/site.launch in a launch file)
         ms["usv"].run(["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/WorldFrames"], name="frames")
         msg = ms["usv"].wait_for_message("/origin", timeout=10)
 
@@ -182,6 +183,10 @@ class Master:
                 return True
             time.sleep(0.1)
         return False
+
+    def set_param(self, name, value):
+        import rosgraph
+        rosgraph.Master("/harness", master_uri=self.uri).setParam(name, value)
 
     def wait_for_param(self, name, timeout=60.0):
         """True once the parameter exists (e.g. /use_sim_time, set by a launch file), False after timeout."""

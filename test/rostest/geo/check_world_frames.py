@@ -1,10 +1,12 @@
 #!/usr/bin/python3
-"""rostest: /origin is latched with the configured origin; map_ned is the NED view of map."""
+"""rostest: /origin is latched with the site's origin (/site/origin); map_ned is the NED view of map; diagnostics
+give the origin in its own UTM zone."""
 import unittest
 
 import rospy
 import rostest
 import tf2_ros
+from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PointStamped
 from sensor_msgs.msg import NavSatFix
 import tf2_geometry_msgs  # noqa: F401  (registers PointStamped with tf2)
@@ -14,8 +16,9 @@ class WorldFrames(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         # one listener for the whole test: a listener dropped mid-test leaves rospy's other subscriptions dead
-        cls.origin = []
+        cls.origin, cls.diags = [], []
         cls.origin_sub = rospy.Subscriber("/origin", NavSatFix, cls.origin.append)
+        cls.diag_sub = rospy.Subscriber("/diagnostics", DiagnosticArray, cls.diags.append)
         cls.buf = tf2_ros.Buffer()
         cls.listener = tf2_ros.TransformListener(cls.buf)
 
@@ -25,9 +28,27 @@ class WorldFrames(unittest.TestCase):
             rospy.sleep(0.05)
         self.assertTrue(self.origin, "no message on /origin")
         msg = self.origin[0]
-        self.assertAlmostEqual(msg.latitude, 61.5)
-        self.assertAlmostEqual(msg.longitude, 23.75)
+        lat, lon, alt = (float(v) for v in rospy.get_param("/site/origin").split(","))
+        self.assertAlmostEqual(msg.latitude, lat)
+        self.assertAlmostEqual(msg.longitude, lon)
+        self.assertAlmostEqual(msg.altitude, alt)
         self.assertEqual(msg.header.frame_id, "map_ned")
+
+    def test_grid_is_the_sites_own_zone(self):
+        deadline = rospy.Time.now() + rospy.Duration(60)
+        while rospy.Time.now() < deadline:
+            for arr in list(self.diags):
+                for st in arr.status:
+                    kv = {v.key: v.value for v in st.values}
+                    if "grid" in kv:
+                        # Hobart: UTM zone 55 south, about 528 km E, 5252 km N
+                        self.assertEqual(kv["grid"], "UTM 55S")
+                        self.assertAlmostEqual(float(kv["grid_easting_m"]) / 1000, 528.7, delta=1.0)
+                        self.assertAlmostEqual(float(kv["grid_northing_m"]) / 1000, 5252.0, delta=2.0)
+                        self.assertNotIn("tm35fin_easting_m", kv)
+                        return
+            rospy.sleep(0.1)
+        self.fail("no origin diagnostics with a grid")
 
     def test_ned_is_enu_swapped(self):
         p = PointStamped()

@@ -281,6 +281,48 @@ TEST(RelayEngine, WrongKeyIsRejectedAndCounted) {
   EXPECT_FALSE(usv.status()[0].up);
 }
 
+// Two vehicles started on different site origins (a USV at Pyhäjärvi, an AUV set up for Hobart) refuse each other
+// at link-up, both origins named, and nothing crosses; the same origins (within the tolerance) link up.
+TEST(RelayEngine, DifferentSiteOriginsRefuseEachOther) {
+  Counters cu, ca;
+  Pair::Received ru, ra;
+  RelayConfig uc = Pair::config("usv", kKey, 0);
+  uc.origin = geo::LatLonAlt{61.4507, 23.7270, 0.0};
+  Engine usv(uc, Pair::callbacks(ru), cu);
+  usv.start();
+  RelayConfig ac = Pair::config("auv", kKey, usv.listenPort());
+  ac.origin = geo::LatLonAlt{-42.8821, 147.3514, 0.0};
+  Engine auv(ac, Pair::callbacks(ra), ca);
+  auv.start();
+  auv.publish(0, kTarget, bytesOf("a target in the wrong frame"));
+  EXPECT_FALSE(Pair::waitFor(ru, 1, 1.5));
+  EXPECT_FALSE(usv.status()[0].up);
+  EXPECT_FALSE(auv.status()[0].up);
+  EXPECT_GT(cu.get("origin_mismatch"), 0u);
+  EXPECT_GT(ca.get("origin_mismatch"), 0u);
+  for (const auto* st : {&usv.status()[0].refused, &auv.status()[0].refused}) {
+    EXPECT_NE(st->find("61.4507"), std::string::npos) << *st;
+    EXPECT_NE(st->find("-42.8821"), std::string::npos) << *st;
+  }
+  {
+    std::lock_guard<std::mutex> l(ru.m);
+    ASSERT_FALSE(ru.refusals.empty());
+    EXPECT_NE(ru.refusals[0].find("refused auv"), std::string::npos) << ru.refusals[0];
+  }
+  // the AUV moved onto the USV's site (0.3 m off: one GPS-grade rounding): the link comes up, the target crosses
+  Counters ca2;
+  Pair::Received ra2;
+  ac.origin = geo::LatLonAlt{61.4507027, 23.7270, 0.0};
+  auv.stop();
+  Engine auv2(ac, Pair::callbacks(ra2), ca2);
+  auv2.start();
+  auv2.publish(0, kTarget, bytesOf("now in the same frame"));
+  ASSERT_TRUE(Pair::waitFor(ru, 1, 5.0));
+  EXPECT_EQ(ru.msgs[0], "now in the same frame");
+  EXPECT_TRUE(Pair::waitUp(usv));
+  EXPECT_EQ(usv.status()[0].refused, "");
+}
+
 TEST(RelayEngine, ReceiverRestartLosesNothing) {
   Counters cu, ca;
   Pair::Received ru1, ru2, ra;

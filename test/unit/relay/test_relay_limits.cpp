@@ -257,7 +257,7 @@ TEST(RelayLimits, AnInsiderFloodingAnnouncesAndPingsStaysBounded) {
   ScriptedPeer rogue(connectTo(usv.listenPort()), key);
   ASSERT_EQ(rogue.receive(2.0), "");
   ASSERT_TRUE(rogue.haveEngineHello());
-  rogue.hello(ScriptedPeer::helloPayload(2, "rogue", 99, rogue.nonce()));
+  rogue.hello(ScriptedPeer::helloPayload(kWireVersion, "rogue", 99, rogue.nonce()));
   FrameHeader ping;
   ping.type = FrameType::Ping;
   rogue.frame(ping, std::vector<std::uint8_t>(16, 0));
