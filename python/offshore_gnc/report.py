@@ -26,6 +26,7 @@ THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4
 MODE_FOLLOW_PATH = 1  # GuidanceStatus.MODE_FOLLOW_PATH (for the plots; the metrics tool filters the same)
 QUALITY_OK = 0  # UsblFix.QUALITY_OK: the only fixes navigation may use
 REFERENCE_HOLD = 2  # GuidanceStatus.REFERENCE_HOLD
+ACTION_HOLD = 2  # SafetyState.ACTION_HOLD
 
 
 def tracking_metrics(path, selector=None):
@@ -130,16 +131,30 @@ def path_ned(path_msg):
     return pts
 
 
-def clearance(track, obstacles):
-    """Minimum horizontal distance from a track to the obstacles' surfaces [m] (NaN without obstacles)."""
-    best = float("nan")
-    for ob in obstacles:
-        r = float(ob.get("radius", max(ob.get("length", 0.0), ob.get("width", 0.0)) / 2.0))
-        for _, n, e, _ in track:
-            d = math.hypot(n - ob["north"], e - ob["east"]) - r
-            if not (d >= best):  # also replaces NaN
-                best = d
-    return best
+def judge(scenario, usv_odom, facts):
+    """The run's outcome and the USV hull's minimum clearance, by the ROS-free mission's own code (the C++ tool
+    `mission_outcome`: the hull of config/usv.yaml, turning with the boat, against the scenario's true shapes; the
+    classes of closed_loop/outcome.h). usv_odom: the USV's ground truth [(t, Odometry)]; facts: held, auv_no_target,
+    target_error (NaN: none reported), died, safety_stop. Returns (outcome, min_clearance_m: NaN without obstacles)."""
+    import tempfile
+    with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
+        f.write("t,north,east,yaw\n")
+        for t, m in usv_odom:
+            q = m.pose.pose.orientation
+            yaw_enu = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+            f.write("%.3f,%.4f,%.4f,%.5f\n" % (t, m.pose.pose.position.y, m.pose.pose.position.x, math.pi / 2 - yaw_enu))
+        path = f.name
+    try:
+        args = [tools.path("mission_outcome"), "--scenario", scenario, "--usv-track", path]
+        for k, v in facts.items():
+            args += ["--" + k.replace("_", "-"), "nan" if isinstance(v, float) and v != v else str(int(v) if isinstance(v, bool) else v)]
+        r = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    finally:
+        os.remove(path)
+    if r.returncode != 0:
+        raise RuntimeError("mission_outcome failed: " + r.stderr.strip())
+    d = json.loads(r.stdout.strip().splitlines()[-1])
+    return d["outcome"], (float("nan") if d["min_clearance_m"] is None else d["min_clearance_m"])
 
 
 def _drift_after(track, t0):
@@ -407,12 +422,18 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     sim_time = (max(all_t) - min(all_t)) if all_t else float("nan")
     if outcome and "sim_time_s" in outcome:  # when the job decided the outcome, not when the bags closed
         sim_time = outcome["sim_time_s"]
-    success = bool(outcome["success"]) if outcome else bool(last_usv and last_usv.success)
     died = (outcome or {}).get("died") or {}
+    held = bool((outcome or {}).get("held")) if outcome else bool(last_usv and last_usv.success)
+    safety_stop = any(m.active_rule in m.active_rules and m.active_rule != "manual" and m.action >= ACTION_HOLD
+                      for _, m in u["/usv/safety/transitions"] + a["/auv/safety/transitions"])
+    verdict, min_clearance = judge(scenario, u["/usv/ground_truth/odom"], {
+        "held": held, "auv_no_target": bool(last_auv and last_auv.phase == "NO_TARGET"),
+        "target_error": target_error, "died": bool(died), "safety_stop": safety_stop}) if scenario else ("timeout", float("nan"))
 
     metrics = {
-        "success": success,
-        "outcome": (outcome or {}).get("reason", last_usv.detail if last_usv else "no USV status recorded"),
+        "success": verdict == "success",
+        "outcome": verdict,  # closed_loop/outcome.h's class; the sentence in reason
+        "reason": (outcome or {}).get("reason", last_usv.detail if last_usv else "no USV status recorded"),
         "usv_rmse_m": us["rmse"], "usv_sd_m": us["sd"], "usv_mae_m": us["mae"], "usv_xte_samples": us["n"],
         "auv_rmse_m": au["rmse"], "auv_sd_m": au["sd"], "auv_mae_m": au["mae"], "auv_xte_samples": au["n"],
         # the AUV's figures above count from the first waypoint reached (as Table 4.4); its approach apart
@@ -427,7 +448,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "auv_nav_after_max_m": max(nav_after) if nav_after else float("nan"),
         "usbl_fixes_received": len(fixes), "usbl_fixes_rejected": len(fixes) - len(fixes_ok),
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
-        "min_clearance_m": clearance(usv_track, sc.get("obstacles", []) or []),
+        "min_clearance_m": min_clearance,  # the hull's (sim/contact.h), not the reference point's
         # where the USV really ended, against the true target (the stand-off is part of this distance)
         "usv_final_distance_to_target_m": (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
                                                for tt in targets_true) if usv_track and targets_true else float("nan")),
@@ -531,7 +552,7 @@ def _summary(out, m, scenario):
         "Scenario: `%s`%s" % (scenario, ", site %.6f, %.6f (local north-east-down frame about it)" % (
             m["site"]["latitude"], m["site"]["longitude"]) if m.get("site", {}).get("latitude") is not None else ""),
         "",
-        "**%s** - %s" % ("SUCCESS" if m["success"] else "FAILED", m["outcome"]), "",
+        "**%s** (%s) - %s" % ("SUCCESS" if m["success"] else "FAILED", m["outcome"], m["reason"]), "",
         "| figure | this run | thesis field test |", "| --- | --- | --- |",
         "| USV cross-track RMSE | %s | %.4f m (Table 5.1) |" % (_fmt(m["usv_rmse_m"], " m"), th["usv_rmse_m"]),
         "| USV cross-track SD | %s | %.4f m |" % (_fmt(m["usv_sd_m"], " m"), th["usv_sd_m"]),
@@ -541,7 +562,7 @@ def _summary(out, m, scenario):
         "| AUV cross-track RMSE on its approach (leg 1) | %s | |" % _fmt(m["auv_approach_rmse_m"], " m"),
         "| detection time | %s | |" % _fmt(m["detection_time_s"], " s"),
         "| target localisation error | %s | |" % _fmt(m["target_error_m"], " m"),
-        "| minimum clearance to obstacles | %s | |" % _fmt(m["min_clearance_m"], " m"),
+        "| minimum clearance, hull to obstacles | %s | |" % _fmt(m["min_clearance_m"], " m"),
         "| AUV navigation error, horizontal (estimate vs truth; %s) | RMSE %s, max %s | |" % (
             m["auv_nav_source"], _fmt(m["auv_nav_rmse_m"], " m"), _fmt(m["auv_nav_max_m"], " m")),
         "| USBL fixes | %d received, %d rejected | |" % (m["usbl_fixes_received"], m["usbl_fixes_rejected"]),

@@ -100,7 +100,8 @@ def test_auv_stack_dies_usv_holds_position(tmp_path):
     r, m = run("pyhajarvi.yaml", tmp_path / "kill", "--kill", "auv@100", "--after-kill", "120")
     assert r.returncode == 1, r.stdout[-3000:]
     assert m["success"] is False
-    assert list(m["stacks_died"]) == ["auv"] and "auv stack died" in m["outcome"], m["outcome"]
+    assert m["outcome"] == "stack_died" and list(m["stacks_died"]) == ["auv"] and "auv stack died" in m["reason"], m
+
     assert m["usv_final_phase"] == "PEER_LOST", m
     assert m["survivor_drift_m"] is not None and m["survivor_drift_m"] < MAX_HOLD_DRIFT_M, m
     assert m["auv_xte_samples"] + m["auv_approach_samples"] > 0  # the killed recorder's bag was reindexed, not lost

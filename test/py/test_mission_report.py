@@ -41,6 +41,7 @@ def test_report_from_bags(tmp_path):
             o.header.stamp = t
             o.pose.pose.position.x = 0.5      # ENU x = east
             o.pose.pose.position.y = float(i)  # ENU y = north
+            o.pose.pose.orientation.z = o.pose.pose.orientation.w = math.sqrt(0.5)  # bow north (ENU yaw 90 deg)
             b.write("/usv/ground_truth/odom", o, t)
             g = GuidanceStatus()
             g.mode = GuidanceStatus.MODE_FOLLOW_PATH
@@ -59,14 +60,18 @@ def test_report_from_bags(tmp_path):
         s = MissionStatus(vehicle="usv", phase="ARRIVED", finished=True, success=True, detail="arrived")
         b.write("/usv/mission/status", s, rospy.Time(149))
     sc = tmp_path / "sc.yaml"
-    sc.write_text("name: t\nobstacles:\n  - {type: buoy, north: 25.0, east: 3.0, radius: 0.5}\n"
-                  "targets:\n  - {north: 45.0, east: 3.0, depth: 5.0}\n")
+    sc.write_text("name: t\norigin: {latitude: 61.45, longitude: 23.72}\nusv: {start: {north: 0, east: 0}}\n"
+                  "auv: {start: {north: 5, east: 5, depth: 2}}\n"
+                  "obstacles:\n  - {type: buoy, north: 25.0, east: 3.0, radius: 0.5}\n"
+                  "targets:\n  - {north: 45.0, east: 3.0, depth: 5.0, radius: 0.5}\n")
     out = tmp_path / "report"
     m = report.build(usv_bag, None, str(sc), str(out), wall_time_s=12.0)
     assert m["success"] is True
     assert m["usv_rmse_m"] == pytest.approx(0.5)
     assert m["usv_mae_m"] == pytest.approx(0.5)
-    assert m["min_clearance_m"] == pytest.approx(2.5 - 0.5)
+    # from the hull (config/usv.yaml's outline, 1.3 m to each side of the centreline), not the reference point
+    assert m["min_clearance_m"] == pytest.approx(2.5 - 0.5 - 1.3, abs=1e-3)
+    assert m["outcome"] == "success"
     assert m["target_error_m"] == pytest.approx(1.0)
     assert m["usv_final_distance_to_target_m"] == pytest.approx(math.hypot(45.0 - 49.0, 3.0 - 0.5))
     assert m["auv_rmse_m"] is None  # no AUV bag: reported as unknown, not as zero
