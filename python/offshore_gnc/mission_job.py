@@ -475,6 +475,7 @@ def run(a):
         if shots:
             outcome["rviz_pixels"] = shots.close(u.get("phase"))
         outcome["sim_time_s"] = round(sim_t, 1)
+        outcome["run_wall_s"] = round(time.time() - clock_t0, 2)  # the simulated run alone, start-up excluded
         print(fmt_progress(u, av), flush=True)
         if channel:
             print("[mission] acoustic channel (USV truth to the AUV master): " + channel.summary(), flush=True)

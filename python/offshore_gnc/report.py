@@ -454,6 +454,8 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
                                                for tt in targets_true) if usv_track and targets_true else float("nan")),
         "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95,
         "sim_time_s": sim_time, "wall_time_s": wall_time_s,
+        # the simulated run alone (from the shared clock's start), what the ROS-free runner's wall_time_s measures
+        "run_wall_time_s": (outcome or {}).get("run_wall_s", float("nan")),
         "stacks_died": {v: round(t, 1) for v, t in died.items()},
         # how far the surviving vehicle moved after the other's stack died (safe behaviour = holding position)
         "survivor_drift_m": _drift_after(usv_track if "auv" in died else auv_track, min(died.values()))
