@@ -36,7 +36,7 @@ from offshore_gnc.testing import MasterSet  # noqa: E402
 from offshore_gnc.testing.masters import free_port, kill_tree  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
-# The geofence fault's target (offshore_gnc::faultKinds(): 5 km north of the origin, NED [m]), outside the USV's
+# The geofence fault's target (common/faults.h kGeofenceTargetNorth: 5 km north of the origin, NED [m]), outside the USV's
 # operating region (safety::usvDefaults(): a 2 km square about the origin)
 PHANTOM_TARGET_NED = (5000.0, 0.0, 5.0)
 

@@ -90,15 +90,28 @@ MissionResult runMission(const MissionConfig& cfg) {
   res.min_clearance_m = std::numeric_limits<double>::infinity();
   bool held = false;
   const sim::Scenario::Mission& judge = cfg.scenario.mission;
+  const Fault* geofence = nullptr;
+  for (const auto& f : cfg.link_faults.faults())
+    if (f.name == "geofence") geofence = &f;
+  bool geofence_sent = false;
   for (; t <= judge.max_sim_time; ++step) {
+    const bool link_up = !cfg.link_faults.active("link", t);
+    to_auv.setUp(link_up);
+    to_usv.setUp(link_up);
     usv.step();
     if (usv.gpsNow()) to_auv.send(usv.time(), *usv.gpsNow(), false);
     for (const auto& g : to_auv.receive(usv.time())) auv.onUsvGps(g);
     auv.setUsvTruth(usv.truth());  // the simulated acoustic channel
     auv.step();
     t = usv.time();
-    usv.onPeerAlive(t);  // the relay's link is up for the whole run
-    auv.onPeerAlive(t);
+    if (link_up) {  // the relays' link status
+      usv.onPeerAlive(t);
+      auv.onPeerAlive(t);
+    }
+    if (geofence && !geofence_sent && t >= geofence->start) {  // the phantom arrives as a relayed /target would
+      usv.onTarget(Eigen::Vector2d(kGeofenceTargetNorth, 0.0), t);
+      geofence_sent = true;
+    }
     if (auto tg = auv.takeTarget()) {
       res.target = *tg;
       to_usv.send(t, *tg, true);
@@ -107,6 +120,8 @@ MissionResult runMission(const MissionConfig& cfg) {
       usv.onTarget(tg.head<2>(), t);
       target_delivered = true;
     }
+    if (!usv.mission().refusal().empty() && (res.target_refusals.empty() || res.target_refusals.back() != usv.mission().refusal()))
+      res.target_refusals.push_back(usv.mission().refusal());
     const Eigen::Vector2d usv_ne = usv.truth().position.head<2>();
     if (!target_delivered && usv.mission().phase() == mission::UsvPhase::StationKeeping) {
       if (!wait_start) wait_start = usv_ne, res.usv_wait_drift_m = 0.0;

@@ -1,9 +1,9 @@
 // mission_rosfree: the co-operative mission ROS-free in one process (closed_loop::runMission), on the same
 // scenario, configuration files and seeds as ./scripts/mission. Prints one JSON object with the figures the
-// mission report gives (metrics.json's keys; `outcome` one of closed_loop/outcome.h's, `reason` the sentence); --out DIR also writes the tracks as CSV, and the USV's trace
-// (usv_trace.csv: truth, guidance's reference, the joystick command) for tuning. --fault PLAN injects the
-// simulators' faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault; not the main job's own, link and
-// geofence); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
+// mission report gives (metrics.json's keys; `outcome` one of closed_loop/outcome.h's, `reason` the sentence);
+// --out DIR also writes the tracks as CSV, and the USV's trace (usv_trace.csv: truth, guidance's reference, the
+// joystick command) for tuning. --fault PLAN injects the faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault: the simulators', and link and geofence between the
+// vehicles); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
 // --seed S draws every sensor's noise anew (the USV simulator seed 2S-1, the AUV's 2S: S = 1 is the launch files'
 // seeds 1 and 2); the scenario's own seeds (its current's) stay as written.
 // The AUV navigates on USBL fixes as in the main job (--auv-navigation ins: the simulator's INS-like estimate);
@@ -110,9 +110,7 @@ int main(int argc, char** argv) {
     cfg.auv.usbl_seed = static_cast<unsigned>(2 * seed - 1);  // config/usbl/usbl.yaml's seed 1 for S = 1
     cfg.relay_seed = static_cast<unsigned>(seed);
     const FaultPlan plan = FaultPlan::parse(faults);  // ConfigError naming a bad item
-    for (const auto& f : plan.faults())
-      if (std::string(findFaultKind(f.name)->vehicle) == "both")
-        throw ConfigError("fault '" + f.name + "' is the main job's, between the masters: not in the ROS-free mission");
+    cfg.link_faults = plan.of("both");  // link, geofence: between the vehicles
     cfg.usv.sim.faults = plan.of("usv");
     cfg.auv.sim.faults = plan.of("auv");
     const closed_loop::MissionResult r = closed_loop::runMission(cfg);

@@ -30,6 +30,9 @@ struct MissionConfig {
   double relay_latency = 0.1;             // the radio between the masters: every message this late [s]
   double relay_loss = 0.0;                // and best-effort ones (GPS, heading) lost with this probability
   unsigned relay_seed = 1;
+  // The main job's own faults, between the vehicles (offshore_gnc::faultKinds() "both"): `link` takes the radio
+  // down, `geofence` hands the USV a target 5 km north of the origin as if the AUV had sent it.
+  FaultPlan link_faults;
 };
 // The scenario (its mission section says how a run is judged) and the vehicles' configuration files under
 // config_dir.
@@ -71,6 +74,7 @@ struct MissionResult {
   std::size_t usbl_fixes_received = 0, usbl_fixes_rejected = 0, relay_lost = 0;
   double sim_time_s = 0.0, wall_time_s = 0.0;
   std::vector<safety::Transition> usv_safety, auv_safety;  // each supervisor's activations and releases
+  std::vector<std::string> target_refusals;  // the USV mission's reasons for refusing a target it was handed
   // The USV at 20 Hz, what a tuner looks at (mission_rosfree --out writes it as usv_trace.csv, kUsvTraceHeader):
   // truth, guidance's reference and cross-track, the joystick command, dynamic positioning's last step.
   std::vector<std::array<double, 19>> usv_trace;

@@ -98,13 +98,16 @@ class UsblNavigation {
 };
 
 // The radio between the two masters, as the relay meets it: each message delivered `latency` seconds after it was
-// sent, best-effort ones lost with probability `loss` (seeded), reliable ones (the relay's queue) never.
+// sent, best-effort ones lost with probability `loss` (seeded), reliable ones (the relay's queue) never. While the
+// link is down (the `link` fault) nothing arrives; best-effort messages are lost, reliable ones wait for it.
 template <class T>
 class RadioLink {
  public:
   RadioLink(double latency, double loss, unsigned seed) : latency_(latency), loss_(loss), rng_(seed) {}
+  void setUp(bool up) { up_ = up; }
+  bool up() const { return up_; }
   void send(double t, const T& m, bool reliable) {
-    if (!reliable && std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < loss_) {
+    if (!reliable && (!up_ || std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < loss_)) {
       ++lost_;
       return;
     }
@@ -113,7 +116,7 @@ class RadioLink {
   // Messages due by t, oldest first.
   std::vector<T> receive(double t) {
     std::vector<T> out;
-    while (!queue_.empty() && queue_.front().first <= t) {
+    while (up_ && !queue_.empty() && queue_.front().first <= t) {
       out.push_back(std::move(queue_.front().second));
       queue_.pop_front();
     }
@@ -123,6 +126,7 @@ class RadioLink {
 
  private:
   double latency_, loss_;
+  bool up_ = true;
   std::mt19937 rng_;
   std::deque<std::pair<double, T>> queue_;
   std::size_t lost_ = 0;
