@@ -27,6 +27,7 @@ void record(VehicleRecord& r, const VehicleState& truth, long step, const guidan
       const Eigen::Vector2d a = path[k - 1].head<2>(), d = path[k].head<2>() - a, p = truth.position.head<2>() - a;
       if (d.norm() > 0.0) e_truth = (d.x() * p.y() - d.y() * p.x()) / d.norm();
     }
+    r.xte_truth.emplace_back(truth.t, e_truth);
     if (k >= 2) {
       r.xte_tracking.emplace_back(truth.t, g->los.cross_track_error);
       r.xte_tracking_truth.emplace_back(truth.t, e_truth);
@@ -54,6 +55,7 @@ guidance::TrackingMetrics metricsOf(const std::vector<Eigen::Vector2d>& samples)
 
 void finish(VehicleRecord& r, const std::string& phase) {
   r.metrics = metricsOf(r.xte);
+  r.metrics_truth = metricsOf(r.xte_truth);
   r.tracking = metricsOf(r.xte_tracking);
   r.tracking_truth = metricsOf(r.xte_tracking_truth);
   r.approach_truth = metricsOf(r.xte_approach_truth);
