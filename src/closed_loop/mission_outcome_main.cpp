@@ -4,8 +4,6 @@
 //   mission_outcome --scenario FILE --usv-track CSV [--config DIR] [--held 0|1] [--auv-no-target 0|1]
 //                   [--target-error M] [--died 0|1] [--safety-stop 0|1]
 // Prints {"outcome": "...", "min_clearance_m": x} (null without obstacles); exit 2 on bad input.
-#include <yaml-cpp/yaml.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -54,7 +52,7 @@ int main(int argc, char** argv) {
     f.target_tolerance_m = sc.mission.target_tolerance;
     sim::HullFootprint hull;
     const std::string vehicle = config + "/usv.yaml";
-    readParamsYaml(YAML::LoadFile(vehicle), sim::HullFootprint::table(), hull, vehicle);
+    readParamsYaml(loadYamlFile(vehicle), sim::HullFootprint::table(), hull, vehicle);
     hull.validate();
     std::ifstream in(track);
     if (!in) throw ConfigError("cannot read the track '" + track + "'");
