@@ -101,7 +101,8 @@ def _run(a, spec, out, tool):
     _check_faults(spec, os.path.join(out, runs.scenario_file(0)))
     store = runs.Store(out)
     todo = [i for i in range(n) if i not in store.done()]
-    session = {"started": datetime.datetime.now().isoformat(timespec="seconds"), "missions": n, "jobs": a.jobs,
+    session = {"started": datetime.datetime.now().isoformat(timespec="seconds"), "missions": n,
+               "jobs": None if a.scheduler else a.jobs,
                "scheduler": a.scheduler, "ran": 0, "wall_s": 0.0, "interrupted": False}
     meta["sessions"].append(session)
     runs.write_atomic(os.path.join(out, "campaign.json"), json.dumps(meta, indent=1) + "\n")
@@ -118,12 +119,13 @@ def _run(a, spec, out, tool):
                 raise RuntimeError("run %d on %s generated another scenario than this client: the workers run "
                                    "other code" % (record["index"], record["host"]))
             store.put(record)
-            session["ran"] += 1
             progress.update(record)
     except KeyboardInterrupt:
         session["interrupted"] = True
     finally:
+        source.close()  # the local pool: pending runs dropped, running missions killed
         session["wall_s"] = round(time.monotonic() - t0, 2)
+        session["ran"] = len(store.done() & set(range(n))) - (n - len(todo))  # counted from the store, not events
         progress.close()
         runs.write_atomic(os.path.join(out, "campaign.json"), json.dumps(meta, indent=1) + "\n")
     if session["interrupted"]:
@@ -131,7 +133,7 @@ def _run(a, spec, out, tool):
             len(store.done() & set(range(n))), n, spec["file"], out), file=sys.stderr)
         return 130
     shown = os.path.relpath(tool) if tool.startswith(os.getcwd()) else tool
-    summary = report.write(out, spec, store.records(n), session, shown, sys.stdout)
+    summary = report.write(out, spec, store.records(n), meta["sessions"], shown, sys.stdout)
     return 1 if summary["errors"] else 0
 
 

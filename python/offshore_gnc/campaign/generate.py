@@ -154,47 +154,54 @@ def survey_depth(draw, spec):
     return sum(spec["target"]["depth_m"]) / 2 if s == "plan" else draw.uniform("auv.survey_depth_m", s)
 
 
+def _target(d, spec, area):
+    t = spec["target"]
+    return {"north": _r(d.uniform("target.north", [area["north_min"], area["north_max"]])),
+            "east": _r(d.uniform("target.east", [area["east_min"], area["east_max"]])),
+            "depth": _r(d.uniform("target.depth_m", t["depth_m"])), "radius": _r(d.uniform("target.radius_m",
+                                                                                          t["radius_m"]))}
+
+
+def _auv(d, spec, area):
+    """Launched `start_offset_m` from the USV toward the centre of its area, facing it."""
+    a = spec["auv"]
+    bearing = math.atan2((area["east_min"] + area["east_max"]) / 2, (area["north_min"] + area["north_max"]) / 2)
+    offset = d.uniform("auv.start_offset_m", a["start_offset_m"])
+    return {"start": {"north": _r(offset * math.cos(bearing)), "east": _r(offset * math.sin(bearing)),
+                      "depth": _r(d.uniform("auv.start_depth_m", a["start_depth_m"])),
+                      "yaw_deg": _r(math.degrees(bearing), 1)},
+            "coverage": dict(area, depth=_r(survey_depth(d, spec)))}
+
+
 def generate(spec, index):
     """{scenario, options: {auv_model, seed, faults}, variables} of run `index` (0-based)."""
     d = Draw(spec["seed"], index)
     model = d.choice("auv_model", spec["auv_model"])
     site = spec["site"][d.integer("site", [0, len(spec["site"]) - 1])]
-    env = _environment(d, spec, model)
     area = _area(d, spec["area"])
-    t, depth = spec["target"], d.uniform("target.depth_m", spec["target"]["depth_m"])
-    target = {"north": _r(d.uniform("target.north", [area["north_min"], area["north_max"]])),
-              "east": _r(d.uniform("target.east", [area["east_min"], area["east_max"]])),
-              "depth": _r(depth), "radius": _r(d.uniform("target.radius_m", t["radius_m"]))}
+    target = _target(d, spec, area)
     to_target = math.hypot(target["north"], target["east"])
     station = (target["north"] * (1 - STANDOFF_M / to_target), target["east"] * (1 - STANDOFF_M / to_target))
-    centre = ((area["north_min"] + area["north_max"]) / 2, (area["east_min"] + area["east_max"]) / 2)
-    bearing = math.atan2(centre[1], centre[0])
-    offset = d.uniform("auv.start_offset_m", spec["auv"]["start_offset_m"])
-    fault = d.choice("faults", {i: f["probability"] for i, f in enumerate(spec["faults"])}) if spec["faults"] else None
     placed, dropped = obstacles(d, spec["obstacles"], (0.0, 0.0), station)
+    fault = d.choice("faults", {i: f["probability"] for i, f in enumerate(spec["faults"])}) if spec["faults"] else None
+    fault = spec["faults"][fault]["plan"] if fault is not None else None
     scenario = {
         "name": "%s-%d-%d" % (spec["name"], spec["seed"], index),
         "origin": {k: site[k] for k in ("latitude", "longitude", "altitude")},
-        **env,
-        "usv": {"start": {"north": 0.0, "east": 0.0, "yaw_deg": _r(d.uniform("usv.yaw_deg", spec["usv"]["yaw_deg"]), 1)}},
-        "auv": {"start": {"north": _r(offset * math.cos(bearing)), "east": _r(offset * math.sin(bearing)),
-                          "depth": _r(d.uniform("auv.start_depth_m", spec["auv"]["start_depth_m"])),
-                          "yaw_deg": _r(math.degrees(bearing), 1)},
-                "coverage": dict(area, depth=_r(survey_depth(d, spec)))},
-        "obstacles": placed,
-        "targets": [target],
+        **_environment(d, spec, model),
+        "usv": {"start": {"north": 0.0, "east": 0.0, "yaw_deg": _r(d.uniform("usv.yaw_deg", spec["usv"]["yaw_deg"]),
+                                                                   1)}},
+        "auv": _auv(d, spec, area), "obstacles": placed, "targets": [target],
         "mission": {"expect": "target_reached", **spec["mission"]},
     }
     options = {"auv_model": model, "seed": 1 + int(d.stream("sensor_seed").random() * (10 ** 9 - 1)),
-               "faults": spec["faults"][fault]["plan"].split() if fault is not None else []}
-    cur = scenario["current"]
-    variables = {
+               "faults": fault.split() if fault else []}
+    variables = {  # what the report bins success by
         "site": site["name"], "auv_model": model,
-        "current_speed_m_s": _r(math.hypot(cur["north"], cur["east"]), 3),
+        "current_speed_m_s": _r(math.hypot(scenario["current"]["north"], scenario["current"]["east"]), 3),
         "wind_speed_m_s": scenario["wind"]["speed"], "wave_amplitude_m": scenario["waves"]["amplitude"],
         "obstacles": len(placed), "obstacles_dropped": dropped, "target_depth_m": target["depth"],
-        "transit_m": _r(math.hypot(*station), 1),
-        "fault": spec["faults"][fault]["plan"] if fault is not None else "none",
+        "transit_m": _r(math.hypot(*station), 1), "fault": fault or "none",
     }
     return {"scenario": scenario, "options": options, "variables": variables}
 

@@ -163,13 +163,15 @@ def _plot_success(tables, path):
     plt.close(fig)
 
 
-def summarise(records, spec, session, out):
-    """The report as a dict (report.json)."""
+def summarise(records, spec, sessions, out):
+    """The report as a dict (report.json). Throughput: the runs of every session over their wall time (a resumed
+    campaign's too; a session that only wrote the report adds nothing)."""
     n = len(records)
     k = sum(r["outcome"] == "success" for r in records)
     lo, hi = wilson(k, n)
     outcomes = {o: sum(r["outcome"] == o for r in records) for o in runs.OUTCOMES}
-    rate = session["ran"] / session["wall_s"] if session.get("ran") and session.get("wall_s") else None
+    ran, wall = sum(x["ran"] for x in sessions), sum(x["wall_s"] for x in sessions if x["ran"])
+    rate, session = (ran / wall if ran and wall else None), sessions[-1]
     return {
         "summary": {
             "campaign": spec["name"], "spec": spec.get("file"), "purpose": spec["purpose"], "seed": spec["seed"],
@@ -178,9 +180,8 @@ def summarise(records, spec, session, out):
             "success_rate_ci_low": round(lo, 4) if n else None, "success_rate_ci_high": round(hi, 4) if n else None,
             "collisions": outcomes["collision"], "outcomes": outcomes,
             "errors": sum(r["error"] is not None for r in records),
-            "missions_per_s": round(rate, 3) if rate else None, "session_runs": session.get("ran", 0),
-            "session_wall_s": round(session.get("wall_s", 0.0), 1), "jobs": session.get("jobs"),
-            "scheduler": session.get("scheduler"), "out": out},
+            "missions_per_s": round(rate, 3) if rate else None, "runs_timed": ran, "run_wall_s": round(wall, 1),
+            "jobs": session["jobs"], "scheduler": session["scheduler"], "out": out},
         "metrics": distributions(records),
         "success_by": {v: success_by(records, v, cat) for v, _, cat in VARIABLES} if records else {},
         "worst": [r["index"] for r in worst(records)],
@@ -242,16 +243,16 @@ def lines(report, records, out, tool):
               for e in report["errors"][:20]]
     t += ["", "Report: %s (report.md, report.json, metrics.png, success_by_variable.png; runs/, scenarios/)" % out]
     if s["missions_per_s"]:
-        t.append("This session: %d runs in %.0f s, %.2f missions/s (%s)" % (
-            s["session_runs"], s["session_wall_s"], s["missions_per_s"],
+        t.append("Throughput: %d runs in %.0f s of wall time, %.2f missions/s (last session: %s)" % (
+            s["runs_timed"], s["run_wall_s"], s["missions_per_s"],
             "Dask cluster %s" % s["scheduler"] if s["scheduler"] else "%d local jobs" % s["jobs"]))
     return t
 
 
-def write(out, spec, records, session, tool="mission_rosfree", stream=None):
+def write(out, spec, records, sessions, tool="mission_rosfree", stream=None):
     """Writes OUT/report.{md,json} and the plots, prints the report to `stream` (last line: the summary's JSON);
     returns the summary."""
-    report = summarise(records, spec, session, out)
+    report = summarise(records, spec, sessions, out)
     text = lines(report, records, out, tool)
     runs.write_atomic(os.path.join(out, "report.json"), json.dumps(report, indent=1) + "\n")
     runs.write_atomic(os.path.join(out, "report.md"), "\n".join(text + [
