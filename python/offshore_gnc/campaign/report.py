@@ -2,6 +2,7 @@
 each figure's distribution (percentiles, histograms), success against each sampled variable (where the envelope
 ends), the worst runs with their replay commands. Written to OUT (report.md, report.json, *.png) and printed; the
 last printed line is one JSON object."""
+import collections
 import json
 import math
 import os
@@ -109,6 +110,7 @@ def _plot_metrics(records, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import MaxNLocator
     fig, axes = plt.subplots(2, 4, figsize=(18, 8.5))
     for ax, m in zip(axes.flat, METRICS):
         ok = [figure(r, m) for r in records if r["outcome"] == "success"]
@@ -123,6 +125,7 @@ def _plot_metrics(records, path):
             ax.legend(fontsize=9)
         ax.set_title(m[1], fontsize=12)
         ax.set_ylabel("runs")
+        ax.yaxis.set_major_locator(MaxNLocator(integer=True))
         ax.grid(alpha=0.3)
     fig.suptitle("Figures of %d runs (all outcomes; a figure a run did not reach is left out)" % len(records),
                  fontsize=14)
@@ -157,8 +160,9 @@ def _plot_success(tables, path):
         ax.set_title("success rate vs " + label, fontsize=12)
         ax.set_ylabel("success [%]")
         ax.grid(axis="y", alpha=0.3)
-        ax.legend(fontsize=8, loc="lower left")
-    fig.tight_layout()
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper center", ncol=3, fontsize=11)
+    fig.tight_layout(rect=(0, 0, 1, 0.96))
     fig.savefig(path, dpi=90)
     plt.close(fig)
 
@@ -190,50 +194,68 @@ def summarise(records, spec, sessions, out):
     }
 
 
-def _rate_text(row, per_model):
-    if not row["n"]:
-        return "%s: no runs" % row["bin"]
-    models = "".join(" (%s %.0f %%)" % (m, 100 * x["rate"]) for m, x in row["by_model"].items() if x["n"] and per_model)
-    return "%s: %.0f %% of %d [%.0f-%.0f]%s" % (row["bin"], 100 * row["rate"], row["n"], 100 * row["ci_low"],
-                                                100 * row["ci_high"], models)
+def _rate_row(row, models):
+    pct = lambda x: "-" if x["rate"] is None else "%.0f %%" % (100 * x["rate"])  # noqa: E731
+    ci = "-" if row["rate"] is None else "%.0f-%.0f %%" % (100 * row["ci_low"], 100 * row["ci_high"])
+    return "| %s | %d | %s | %s | %s |" % (row["bin"], row["n"], pct(row), ci, " | ".join(
+        "%s of %d" % (pct(row["by_model"][m]), row["by_model"][m]["n"]) if row["by_model"].get(m, {}).get("n") else "-"
+        for m in models))
 
 
 def _fmt(v, digits=2):
     return "-" if v is None else ("%.*f" % (digits, v))
 
 
-def lines(report, records, out, tool):
-    """The report as text lines (printed, and report.md)."""
-    s = report["summary"]
-    by_index = {r["index"]: r for r in records}
+def _headline(s):
     t = ["# Campaign '%s' (%s, %s seed %d): %d missions" % (s["campaign"], s["spec"], s["purpose"], s["seed"],
                                                             s["missions"]), ""]
     if s["missions"]:
         t += ["Success: %d of %d = %.1f %% (95 %% Wilson interval %.1f-%.1f %%)" % (
             s["successes"], s["missions"], 100 * s["success_rate"], 100 * s["success_rate_ci_low"],
             100 * s["success_rate_ci_high"]), ""]
-    t += ["Outcomes: " + ", ".join("%s %d" % kv for kv in s["outcomes"].items() if kv[1]) or "none", ""]
+    t += ["Outcomes: " + (", ".join("%s %d" % kv for kv in s["outcomes"].items() if kv[1]) or "none"), ""]
     if s["purpose"] == "tuning":
         t += ["(a TUNING campaign: not figures to report; docs/campaign.md)", ""]
-    t += ["## Figures (all runs that reached them; p = percentile)", "",
-          "| figure | n | p5 | p25 | p50 | p75 | p95 | max |", "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    return t
+
+
+def _figures(report):
+    t = ["## Figures (all runs that reached them; p = percentile)", "",
+         "| figure | n | p5 | p25 | p50 | p75 | p95 | max |", "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for key, label, _, _ in METRICS:
         d = report["metrics"][key]
         t.append("| %s | %d | %s | %s |" % (label, d["n"], " | ".join(_fmt(d.get("p%d" % p)) for p in PERCENTILES),
                                            _fmt(d["max"])))
-    t += ["", "## Success rate by sampled variable (95 % Wilson interval; per AUV model)", ""]
+    return t + [""]
+
+
+def _by_variable(report, records):
+    t = ["## Success rate by sampled variable (where the envelope ends)", ""]
+    models = sorted({r["variables"]["auv_model"] for r in records})
     for var, label, _ in VARIABLES:
-        rows = report["success_by"].get(var, [])
-        t.append("- %s: " % label + "; ".join(_rate_text(r, var != "auv_model") for r in rows))
-    t += ["", "## The %d worst runs" % len(report["worst"]), ""]
+        t += ["| %s | runs | success | 95 %% interval | %s |" % (label, " | ".join(models)),
+              "| --- " * (4 + len(models)) + "|"]
+        t += [_rate_row(r, models) for r in report["success_by"].get(var, [])] + [""]
+    return t
+
+
+def _failures(records):
+    why = collections.Counter((r["outcome"], (r["result"] or {}).get("reason") or r["error"].splitlines()[-1])
+                              for r in records if r["outcome"] != "success")
+    return ["## Failures by reason", ""] + ["- %d x %s: %s" % (k, o, w) for (o, w), k in why.most_common(12)] + [""] \
+        if why else []
+
+
+def _worst(report, records, out, tool):
+    by_index = {r["index"]: r for r in records}
+    t = ["## The %d worst runs" % len(report["worst"]), ""]
     for i in report["worst"]:
-        r = by_index[i]
-        res, cmds = r["result"] or {}, generate.replay_commands(os.path.join(out, r["scenario"]), r["options"], tool)
+        r, v = by_index[i], by_index[i]["variables"]
+        cmds = generate.replay_commands(os.path.join(out, r["scenario"]), r["options"], tool)
         t += ["- run %d: **%s** (%s), %s, %s, current %.2f m/s, wind %.1f m/s, %d obstacles, target %.1f m deep, "
               "fault %s; USV xte %s, AUV xte %s, target error %s, clearance %s" % (
-                  i, r["outcome"], res.get("reason") or r["error"], r["variables"]["site"],
-                  r["variables"]["auv_model"], r["variables"]["current_speed_m_s"], r["variables"]["wind_speed_m_s"],
-                  r["variables"]["obstacles"], r["variables"]["target_depth_m"], r["variables"]["fault"],
+                  i, r["outcome"], (r["result"] or {}).get("reason") or r["error"], v["site"], v["auv_model"],
+                  v["current_speed_m_s"], v["wind_speed_m_s"], v["obstacles"], v["target_depth_m"], v["fault"],
                   *(_fmt(figure(r, m)) for m in (METRICS[0], METRICS[1], METRICS[5], METRICS[6]))),
               "  scenario %s" % os.path.join(out, r["scenario"]), "  replay: %s" % cmds["rosfree"],
               "  ROS job: %s" % cmds["ros"]]
@@ -241,12 +263,23 @@ def lines(report, records, out, tool):
         t += ["", "## Runs that could not run (%d; counted as stack_died)" % len(report["errors"]), ""]
         t += ["- run %d (exit %s): %s" % (e["index"], e["returncode"], e["error"].splitlines()[-1])
               for e in report["errors"][:20]]
-    t += ["", "Report: %s (report.md, report.json, metrics.png, success_by_variable.png; runs/, scenarios/)" % out]
+    return t + [""]
+
+
+def _footer(s, out):
+    t = ["Report: %s (report.md, report.json, metrics.png, success_by_variable.png; runs/, scenarios/)" % out]
     if s["missions_per_s"]:
         t.append("Throughput: %d runs in %.0f s of wall time, %.2f missions/s (last session: %s)" % (
             s["runs_timed"], s["run_wall_s"], s["missions_per_s"],
             "Dask cluster %s" % s["scheduler"] if s["scheduler"] else "%d local jobs" % s["jobs"]))
     return t
+
+
+def lines(report, records, out, tool):
+    """The report as text lines (printed, and report.md)."""
+    s = report["summary"]
+    return (_headline(s) + _figures(report) + _by_variable(report, records) + _failures(records)
+            + _worst(report, records, out, tool) + _footer(s, out))
 
 
 def write(out, spec, records, sessions, tool="mission_rosfree", stream=None):
