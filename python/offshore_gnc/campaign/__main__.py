@@ -79,7 +79,8 @@ def _meta(out, spec, resume):
         with open(path) as f:
             meta = json.load(f)
         if not resume:
-            raise UsageError("%s already holds a campaign: add --resume to go on with it, or choose another --out" % out)
+            raise UsageError("%s already holds a campaign: add --resume to go on with it, or choose another --out"
+                             % out)
         if meta["fingerprint"] != specs.fingerprint(spec):
             raise UsageError("%s holds campaign '%s' (seed %s) of another spec or seed: it cannot be resumed with this "
                              "one" % (out, meta["spec"]["name"], meta["spec"]["seed"]))

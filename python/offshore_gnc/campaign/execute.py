@@ -40,7 +40,8 @@ def dask_runs(spec, todo, address, tool):
     with Client(address, timeout=30) as client:
         problems = {w: p for w, p in client.run(can_run).items() if p}
         if problems:
-            raise RuntimeError("Dask workers cannot run missions: " + "; ".join("%s: %s" % kv for kv in problems.items()))
+            raise RuntimeError("Dask workers cannot run missions: " +
+                               "; ".join("%s: %s" % kv for kv in problems.items()))
         session = uuid.uuid4().hex[:8]
 
         def submit(i, attempt):

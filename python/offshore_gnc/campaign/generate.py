@@ -76,7 +76,8 @@ def _gap(a, b):
         return max(0.0, _outline_distance((a["north"], a["east"]), b) - a["radius"])
     if b["type"] == "buoy":
         return _gap(b, a)
-    return min(min(_outline_distance(p, b) for p in _edge_points(a)), min(_outline_distance(p, a) for p in _edge_points(b)))
+    return min(min(_outline_distance(p, b) for p in _edge_points(a)),
+               min(_outline_distance(p, a) for p in _edge_points(b)))
 
 
 def _obstacle_shape(draw, o, rng):
@@ -138,7 +139,8 @@ def _environment(draw, spec, model):
         "current": {"north": _r(speed * math.cos(towards), 3), "east": _r(speed * math.sin(towards), 3),
                     "variation": _r(draw.uniform("current.variation", c["variation"]), 3),
                     "seed": int(draw.stream("current.seed").random() * 2 ** 32)},
-        "wind": {"speed": _r(wind_speed), "direction_deg": _r(draw.uniform("wind.direction_deg", w["direction_deg"]), 1),
+        "wind": {"speed": _r(wind_speed),
+                 "direction_deg": _r(draw.uniform("wind.direction_deg", w["direction_deg"]), 1),
                  "gust": _r(wind_speed * draw.uniform("wind.gust_factor", w["gust_factor"]))},
         "waves": {k: _r(draw.uniform("waves." + k, wv[k]), digits) for k, digits in
                   (("amplitude", 3), ("heave_amplitude", 3), ("yaw_amplitude_deg", 2), ("frequency", 3),

@@ -145,8 +145,8 @@ def _plot_success(tables, path):
         x = np.arange(len(rows))
         pct = lambda v: np.nan if v is None else 100 * v  # noqa: E731 (an empty bin has no rate)
         rate = np.array([pct(r["rate"]) for r in rows])
-        err = np.clip(np.array([[rate[j] - pct(r["ci_low"]), pct(r["ci_high"]) - rate[j]] for j, r in enumerate(rows)]).T,
-                      0, None)
+        err = np.array([[rate[j] - pct(r["ci_low"]), pct(r["ci_high"]) - rate[j]] for j, r in enumerate(rows)])
+        err = np.clip(err.T, 0, None)  # a rate at 100 % may sit a rounding error above its interval's top
         ax.bar(x, rate, color="#9ecae1", yerr=err, capsize=4, label="all (95 % CI)")
         for model, (mk, col) in markers.items():
             pts = [(j, r["by_model"][model]["rate"] * 100) for j, r in enumerate(rows)
