@@ -2,8 +2,8 @@
 
 Runs a campaign's missions ROS-free (mission_rosfree, one process per run) on the local cores or a Dask cluster,
 stores each run as it finishes (OUT/runs/), then writes and prints the report; the last line printed is one JSON
-object. Exit status: 0 every run ran (whatever its outcome), 1 some runs could not run (listed in the report), 2 a bad
-spec or option, 130 interrupted (--resume goes on). docs/campaign.md."""
+object. Exit status: 0 every run ran (whatever its outcome), 1 some runs could not run (listed in the report) or the
+cluster failed, 2 a bad spec or option, 130 interrupted (--resume goes on). docs/campaign.md."""
 import argparse
 import datetime
 import hashlib
@@ -150,6 +150,10 @@ def main(argv=None):
     except (specs.SpecError, UsageError, tools.ToolNotFound) as e:
         print("campaign: %s" % e, file=sys.stderr)
         return 2
+    except (OSError, RuntimeError) as e:  # no cluster at that address, workers that cannot run, a full disk
+        print("campaign: %s: %s (the runs stored so far stay: --resume goes on)" % (type(e).__name__, e),
+              file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":
