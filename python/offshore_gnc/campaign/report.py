@@ -13,8 +13,8 @@ from offshore_gnc.campaign import generate, runs
 
 # (key in mission_rosfree's JSON, label, the sample count that must be > 0 for the figure to exist, higher is worse)
 METRICS = (
-    ("usv_rmse_m", "USV cross-track RMSE [m]", "usv_xte_samples", True),
-    ("auv_rmse_m", "AUV cross-track RMSE [m]", "auv_xte_samples", True),
+    ("usv_xte_true_rmse_m", "USV cross-track RMSE [m]", "usv_xte_est_samples", True),
+    ("auv_xte_true_rmse_m", "AUV cross-track RMSE [m]", "auv_xte_true_samples", True),
     ("usv_hold_p95_m", "USV hold, 95th percentile [m]", None, True),
     ("usv_wait_drift_m", "USV drift while waiting [m]", None, True),
     ("auv_nav_rmse_m", "AUV navigation error RMSE [m]", None, True),
@@ -44,13 +44,20 @@ def wilson(k, n, z=1.96):
     return max(0.0, centre - half), min(1.0, centre + half)
 
 
+# Issue 30 renamed mission_rosfree's cross-track keys (_true: the true position's distance from the leg); a build
+# before it printed these (the USV's on its navigation estimate). Delete when no such build is in use.
+OLD_NAMES = {"usv_xte_true_rmse_m": "usv_rmse_m", "usv_xte_est_samples": "usv_xte_samples",
+             "auv_xte_true_rmse_m": "auv_rmse_m", "auv_xte_true_samples": "auv_xte_samples"}
+
+
 def figure(record, metric):
     """A run's figure, None when it was not computed: null in the JSON, or computed over no samples (mission_rosfree
     prints 0.0 for a cross-track RMSE of a path never followed)."""
     key, _, samples, _ = metric
     r = record.get("result") or {}
-    v = r.get(key)
-    return None if v is None or (samples and not r.get(samples)) else float(v)
+    get = lambda k: r.get(k, r.get(OLD_NAMES.get(k)))  # noqa: E731
+    v = get(key)
+    return None if v is None or (samples and not get(samples)) else float(v)
 
 
 def distributions(records):
