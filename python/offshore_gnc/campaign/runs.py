@@ -12,7 +12,8 @@ import time
 from offshore_gnc import tools
 from offshore_gnc.campaign import generate
 
-OUTCOMES = ("success", "collision", "missed_target", "wrong_target", "safety_abort", "timeout", "stack_died")
+OUTCOMES = ("success", "collision", "missed_target", "wrong_target", "off_station", "safety_abort", "timeout",
+            "stack_died")  # closed_loop/outcome.h's
 RUN_TIMEOUT_S = 900.0  # wall time; a mission takes 1-10 s, so this only catches a hung process
 # What differs between two runs of the same (spec, index): when and where they ran.
 VOLATILE = ("run_wall_s", "host")
@@ -22,26 +23,12 @@ _live = set()  # running mission processes of this process (the local pool kills
 _live_lock = threading.Lock()
 
 
-def outcome_class(result, returncode, scenario):
-    """The run's outcome class (one of OUTCOMES). mission_rosfree prints it as `outcome` (issue 31 item 2); an
-    older build printed the sentence there, and then the class is derived from its other figures. Delete all but
-    the first two tests when no such build is in use."""
-    if result is None or returncode not in (0, 1):
-        return "stack_died"  # exit 2 (refused its scenario or options), a crash, a hang: the run never ran
-    if result.get("outcome") in OUTCOMES:
-        return result["outcome"]
-    if result.get("success"):
-        return "success"
-    sentence, m = "%s %s" % (result.get("outcome"), result.get("reason")), scenario["mission"]
-    if (result.get("min_clearance_m") is not None) and result["min_clearance_m"] <= 0:
-        return "collision"
-    if (result.get("target_error_m") is not None) and result["target_error_m"] > m["target_tolerance"]:
-        return "wrong_target"
-    if m["expect"] == "target_reached" and result.get("auv_final_phase") == "NO_TARGET":
-        return "missed_target"
-    if "time limit" in sentence:
-        return "timeout"
-    return "safety_abort" if result.get("usv_safety") or result.get("auv_safety") else "timeout"
+def outcome_class(result, returncode):
+    """The run's outcome class (one of OUTCOMES): mission_rosfree's `outcome` (closed_loop/outcome.h); a run that
+    never ran (refused its scenario or options, crashed, hung) is stack_died."""
+    if result is None or returncode not in (0, 1) or result.get("outcome") not in OUTCOMES:
+        return "stack_died"
+    return result["outcome"]
 
 
 def scenario_file(index):
@@ -109,7 +96,7 @@ def run_one(spec, index, tool=None):
             rc, out, err = None, "", "cannot start %s: %s" % (argv[0], e)
         wall = time.monotonic() - t0
     result = _last_json(out)
-    outcome = outcome_class(result, rc, run["scenario"])
+    outcome = outcome_class(result, rc)
     ran = result is not None and rc in (0, 1)
     return {"index": index, "outcome": outcome, "options": opts, "variables": run["variables"],
             "scenario": scenario_file(index), "scenario_sha256": hashlib.sha256(text.encode()).hexdigest(),
