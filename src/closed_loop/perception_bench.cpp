@@ -28,7 +28,7 @@
 #include "offshore_gnc/perception/lidar_targets.h"
 #include "offshore_gnc/perception/sonar_image.h"
 #include "offshore_gnc/perception/sonar_targets.h"
-#include "offshore_gnc/perception/synthetic_scenes.h"
+#include "perception/synthetic_scenes.h"
 #include "offshore_gnc/sim/sensors.h"
 
 using namespace offshore_gnc;

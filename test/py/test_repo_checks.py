@@ -61,6 +61,46 @@ def test_core_libraries_link_no_ros():
         assert not re.search(r"lib(roscpp|rosconsole|rostime|nodeletlib|tf2_ros)", out), (lib, out)
 
 
+TEST_CODE = re.compile(r"LLVMFuzzerTestOneInput|fuzz_check|synthetic_scenes|scripted_bus|ScriptedPeer|std::abort")
+
+
+def test_no_test_code_in_the_product_sources():
+    """Test support and fuzz targets live in test/ (test/support/<module>/, test/fuzz/): nothing under src/ or
+    include/ (the libraries and the installed headers) is or includes one. Benchmarks (*_bench.cpp) may use test
+    support: they are tools, linked into no library."""
+    bad = []
+    for f in glob.glob(os.path.join(REPO, "src", "**", "*"), recursive=True) + \
+            glob.glob(os.path.join(REPO, "include", "**", "*"), recursive=True):
+        if not os.path.isfile(f) or f.endswith("_bench.cpp"):
+            continue
+        rel = os.path.relpath(f, REPO)
+        if "fuzz" in os.path.basename(f):
+            bad.append(rel + ": a fuzz target (test/fuzz/)")
+            continue
+        for n, line in enumerate(open(f, encoding="utf-8"), 1):
+            if TEST_CODE.search(line) and not line.lstrip().startswith("//"):
+                bad.append("%s:%d: %s" % (rel, n, line.strip()))
+    assert not bad, "test code in the product:\n" + "\n".join(bad)
+
+
+def test_no_library_holds_test_code():
+    """The built libraries (what is installed) define no fuzz entry point, scripted peer or fuzz invariant."""
+    libs = _built_libs()
+    assert libs, "no offshore_gnc library built"
+    bad = []
+    for lib in libs:
+        out = subprocess.run(["nm", "-DC", "--defined-only", lib], stdout=subprocess.PIPE, check=True).stdout.decode()
+        bad += ["%s: %s" % (os.path.basename(lib), l.strip()) for l in out.splitlines()
+                if re.search(r"fuzz|ScriptedPeer|synthetic|LLVMFuzzer", l, re.I)]
+    assert not bad, "test code in installed libraries:\n" + "\n".join(bad[:20])
+
+
+def test_the_test_code_check_itself():
+    for line in ['#include "relay/fuzz_check.h"', "  std::abort();", "ScriptedPeer peer(fd, key);"]:
+        assert TEST_CODE.search(line), line
+    assert not TEST_CODE.search('#include "offshore_gnc/relay/engine.h"')
+
+
 def _module_graph():
     """{module: [dependencies]} from the module graph in CMakeLists.txt (the one place that states it)."""
     text = open(os.path.join(REPO, "CMakeLists.txt"), encoding="utf-8").read()

@@ -31,7 +31,7 @@ class BusMonitor {
 };
 
 // The bus as the gateway and the emulators use it (ros_canopen's DriverInterface): SocketCan on a real or
-// virtual interface, or a scripted bus in the tests (test/support/scripted_bus.h). Times are the caller's clock.
+// virtual interface, or a scripted bus in the tests (test/support/can/scripted_bus.h). Times are the caller's clock.
 class BusInterface {
  public:
   virtual ~BusInterface() = default;

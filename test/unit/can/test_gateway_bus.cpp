@@ -13,7 +13,7 @@
 #include "offshore_gnc/models/environment.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/models/usv.h"
-#include "scripted_bus.h"
+#include "can/scripted_bus.h"
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::can;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "offshore_gnc/micron/fuzz_check.h"
+#include "micron/fuzz_check.h"
 #include "offshore_gnc/micron/seanet.h"
 #include "offshore_gnc/micron/session.h"
 

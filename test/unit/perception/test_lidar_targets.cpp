@@ -6,7 +6,7 @@
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/perception/lidar_targets.h"
-#include "offshore_gnc/perception/synthetic_scenes.h"
+#include "perception/synthetic_scenes.h"
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::perception;

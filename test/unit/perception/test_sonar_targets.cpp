@@ -7,7 +7,7 @@
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/perception/sonar_image.h"
 #include "offshore_gnc/perception/sonar_targets.h"
-#include "offshore_gnc/perception/synthetic_scenes.h"
+#include "perception/synthetic_scenes.h"
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::perception;

@@ -5,7 +5,7 @@
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/perception/sonar_targets.h"
-#include "offshore_gnc/perception/synthetic_scenes.h"
+#include "perception/synthetic_scenes.h"
 #include "offshore_gnc/perception/wall_detection.h"
 
 using namespace offshore_gnc;

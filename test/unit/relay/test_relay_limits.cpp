@@ -18,7 +18,7 @@
 
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/relay/engine.h"
-#include "offshore_gnc/relay/fuzz_check.h"
+#include "relay/fuzz_check.h"
 #include "offshore_gnc/relay/key.h"
 
 using namespace offshore_gnc;

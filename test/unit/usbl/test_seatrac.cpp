@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "offshore_gnc/usbl/beacon_sim.h"
-#include "offshore_gnc/usbl/fuzz_check.h"
+#include "usbl/fuzz_check.h"
 #include "offshore_gnc/usbl/json.h"
 #include "offshore_gnc/usbl/seatrac.h"
 

@@ -1,6 +1,6 @@
 // The relay under hostile input (relay/fuzz_check.h): a scripted peer with its own protocol code, and the two
 // fuzz entry points. The peer's encoding follows docs/relay.md, not the engine's code paths.
-#include "offshore_gnc/relay/fuzz_check.h"
+#include "relay/fuzz_check.h"
 
 #include <poll.h>
 #include <sys/socket.h>

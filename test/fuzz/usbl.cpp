@@ -2,7 +2,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "offshore_gnc/usbl/fuzz_check.h"
+#include "usbl/fuzz_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   offshore_gnc::usbl::fuzzCodecOnce(data, size);

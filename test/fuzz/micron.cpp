@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "offshore_gnc/micron/fuzz_check.h"
+#include "micron/fuzz_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   offshore_gnc::micron::fuzzCodecOnce(data, size);

@@ -1,5 +1,5 @@
-// Invariants of the SeaNet codec and the Micron driver on arbitrary bytes (include/offshore_gnc/micron/fuzz_check.h).
-#include "offshore_gnc/micron/fuzz_check.h"
+// Invariants of the SeaNet codec and the Micron driver on arbitrary bytes (test/support/micron/fuzz_check.h).
+#include "micron/fuzz_check.h"
 
 #include <cmath>
 #include <cstdlib>

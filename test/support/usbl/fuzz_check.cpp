@@ -1,4 +1,4 @@
-#include "offshore_gnc/usbl/fuzz_check.h"
+#include "usbl/fuzz_check.h"
 
 #include <cctype>
 #include <cstdio>
