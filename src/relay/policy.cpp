@@ -1,3 +1,4 @@
+// Relay policies (include/offshore_gnc/relay/policy.h).
 #include "offshore_gnc/relay/policy.h"
 
 #include <algorithm>
@@ -16,41 +17,6 @@ bool TokenBucket::allow(double now_s) {
   return true;
 }
 
-ReliableQueue::ReliableQueue(std::size_t max_messages, std::size_t max_bytes)
-    : max_messages_(std::max<std::size_t>(1, max_messages)), max_bytes_(max_bytes) {}
-
-std::uint64_t ReliableQueue::push(std::uint16_t topic_id, std::uint8_t flags, Bytes payload,
-                                  std::vector<QueuedMessage>* dropped) {
-  const std::size_t n = payload ? payload->size() : 0;
-  while (!q_.empty() && (q_.size() + 1 > max_messages_ || bytes_ + n > max_bytes_)) {
-    if (dropped) dropped->push_back(q_.front());
-    bytes_ -= q_.front().payload ? q_.front().payload->size() : 0;
-    q_.pop_front();
-    if (next_ > 0) --next_;
-  }
-  QueuedMessage m;
-  m.seq = next_seq_++;
-  m.topic_id = topic_id;
-  m.flags = flags;
-  m.payload = std::move(payload);
-  bytes_ += n;
-  q_.push_back(std::move(m));
-  return q_.back().seq;
-}
-
-void ReliableQueue::ack(std::uint64_t ack) {
-  while (!q_.empty() && q_.front().seq <= ack) {
-    bytes_ -= q_.front().payload ? q_.front().payload->size() : 0;
-    q_.pop_front();
-    if (next_ > 0) --next_;
-  }
-}
-
-const QueuedMessage* ReliableQueue::nextToSend() {
-  if (next_ >= q_.size()) return nullptr;
-  return &q_[next_++];
-}
-
 bool ReplayWindow::accept(std::uint64_t c) {
   if (c == 0) return false;
   if (c > top_) {
@@ -66,6 +32,12 @@ bool ReplayWindow::accept(std::uint64_t c) {
   if (bits_ & bit) return false;
   bits_ |= bit;
   return true;
+}
+
+std::uint64_t LinkMonitor::ping(double now, double period) {
+  next_ping_ = now + period;
+  pingSent(++last_id_);
+  return last_id_;
 }
 
 void LinkMonitor::pingSent(std::uint64_t id) {
