@@ -333,7 +333,8 @@ void AuvStack::perceive() {
       beams_.pop_front();
       continue;
     }
-    sonar_.addBeam(view, body * sim::sensorMount(cfg_.sim.sonar.mount, 0.0, true));
+    const Eigen::Isometry3d head = body * sim::sensorMount(cfg_.sim.sonar.mount, 0.0, true, -cfg_.sim.sonar.tilt);
+    sonar_.addBeam(view, head);
     beams_.pop_front();
     if (!sonar_.sweepReady()) continue;
     const perception::SonarSweep sweep = sonar_.takeSweep();
