@@ -36,7 +36,7 @@ from offshore_gnc.testing import MasterSet  # noqa: E402
 from offshore_gnc.testing.masters import free_port, kill_tree  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
-# The geofence fault's target (offshore_gnc::faultKinds(): 5 km north of the origin, NED [m]), outside the USV's
+# The geofence fault's target (common/faults.h kGeofenceTargetNorth: 5 km north of the origin, NED [m]), outside the USV's
 # operating region (safety::usvDefaults(): a 2 km square about the origin)
 PHANTOM_TARGET_NED = (5000.0, 0.0, 5.0)
 
@@ -344,21 +344,21 @@ def after_death(died, launches, status, watch_s):
                      for v, t in sorted(died.items()))
     survivors = [v for v in ("usv", "auv") if v not in died]
     if not survivors:
-        return {"success": False, "reason": gone, "died": died}
+        return {"reason": gone, "died": died}
     s = status[survivors[0]]
     if not s.get("finished") and s.get("sim_time", 0.0) - min(died.values()) < watch_s:
         return None
-    return {"success": False, "died": died,
+    return {"died": died,
             "reason": "%s; the %s went on: phase %s (%s)" % (gone, survivors[0].upper(), s.get("phase"),
                                                              s.get("detail", ""))}
 
 
 def run(a):
     sc = scenario_check.load(a.scenario)  # refuses a bad scenario before anything starts
-    ms_cfg = sc.get("mission", {}) or {}
-    expect = ms_cfg.get("expect", "target_reached")
-    max_sim = a.max_sim_time or float(ms_cfg.get("max_sim_time", 900.0))
-    hold_time = float(ms_cfg.get("hold_time", 60.0))  # on station at the target this long before success
+    judged = scenario_check.mission(a.scenario)  # how the run is judged (the scenario's mission section)
+    expect = judged["expect"]
+    max_sim = a.max_sim_time or judged["max_sim_time"]
+    hold_time = judged["hold_time"]  # on station at the target this long before success
     name = sc.get("name", os.path.splitext(os.path.basename(a.scenario))[0])
     out = os.path.abspath(a.out or os.path.join(REPO, "reports", "%s-%s" % (
         name, datetime.datetime.now().strftime("%Y%m%d-%H%M%S"))))
@@ -367,7 +367,7 @@ def run(a):
     fault_plan = " ".join(a.fault)
     planned = scenario_check.faults(a.scenario, fault_plan)  # refused before start when it does not parse
     t0 = time.time()
-    outcome = {"success": False, "reason": "not started"}
+    outcome = {"reason": "not started"}
     with MasterSet(["usv", "auv"], log_dir=os.path.join(out, "logs")) as ms:
         lockstep = not a.free_running
         common = {"sim": "true", "scenario": os.path.abspath(a.scenario), "rate": str(a.rate), "record": "true",
@@ -457,25 +457,25 @@ def run(a):
             on_station = u.get("on_station_since")
             if expect == "target_reached" and u.get("finished") and u.get("success") and on_station is not None \
                     and sim_t >= on_station + hold_time:
-                outcome = {"success": True, "reason": "USV holds position at the target: " + u.get("detail", "")}
+                outcome = {"held": True, "reason": "USV holds position at the target: " + u.get("detail", "")}
                 break
             if av.get("phase") == "NO_TARGET":
-                outcome = {"success": expect == "no_target",
-                           "reason": "AUV finished its coverage without a detection; USV %s" % u.get("phase")}
+                outcome = {"reason": "AUV finished its coverage without a detection; USV %s" % u.get("phase")}
                 break
             if sim_t > max_sim:
-                outcome = {"success": False, "reason": "simulated time limit %.0f s reached (AUV %s, USV %s)" % (
+                outcome = {"reason": "simulated time limit %.0f s reached (AUV %s, USV %s)" % (
                     max_sim, av.get("phase"), u.get("phase"))}
                 if u.get("finished") and u.get("success") and on_station is None:
                     outcome["reason"] += ": the USV arrived but never came on station (within the mission's " \
                                          "station_radius of its station point)"
                 break
             if time.time() - clock_t0 > 30 and sim_t == 0.0:
-                outcome = {"success": False, "reason": "no simulated time after 30 s: simulators not running"}
+                outcome = {"reason": "no simulated time after 30 s: simulators not running"}
                 break
         if shots:
             outcome["rviz_pixels"] = shots.close(u.get("phase"))
         outcome["sim_time_s"] = round(sim_t, 1)
+        outcome["run_wall_s"] = round(time.time() - clock_t0, 2)  # the simulated run alone, start-up excluded
         print(fmt_progress(u, av), flush=True)
         if channel:
             print("[mission] acoustic channel (USV truth to the AUV master): " + channel.summary(), flush=True)
@@ -503,9 +503,9 @@ def run(a):
             shutil.rmtree(fixed, ignore_errors=True)
     m = report.build(os.path.join(out, "usv.bag"), os.path.join(out, "auv.bag"), a.scenario, out,
                      wall_time_s=round(wall, 2), outcome=outcome, planned_faults=planned)
-    print("[mission] %s: %s" % ("SUCCESS" if m["success"] else "FAILED", outcome["reason"]))
+    print("[mission] %s: %s" % ("SUCCESS" if m["success"] else "FAILED (%s)" % m["outcome"], outcome["reason"]))
     print("[mission] metrics: " + ", ".join("%s=%s" % (k, m[k]) for k in (
-        "usv_rmse_m", "auv_rmse_m", "target_error_m", "min_clearance_m", "auv_nav_source", "auv_nav_rmse_m",
+        "outcome", "usv_xte_est_rmse_m", "auv_xte_true_rmse_m", "target_error_m", "min_clearance_m", "auv_nav_source", "auv_nav_rmse_m",
         "usbl_fixes_received", "usbl_fixes_rejected", "sim_time_s", "wall_time_s")))
     print("[mission] report: %s" % out)
     return 0 if m["success"] else 1

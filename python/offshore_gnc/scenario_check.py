@@ -34,6 +34,12 @@ def load(path):
         return yaml.safe_load(f) or {}
 
 
+def mission(path):
+    """How a run of the scenario is judged, as the simulator's loader reads its mission section (defaults filled):
+    {expect, max_sim_time, hold_time, target_tolerance}; raises ScenarioError naming the problem."""
+    return _check(path, [])["mission"]
+
+
 def faults(path, plan):
     """The fault plan (offshore_gnc::FaultPlan text, e.g. "usbl@150+60 gps@200+10") checked by the simulators'
     own parser: a list of {name, vehicle, start_s, end_s (None: to the end)}; raises ScenarioError naming the bad

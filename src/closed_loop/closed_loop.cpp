@@ -72,6 +72,7 @@ ClosedLoopResult runAuv(const ClosedLoopConfig& cfg, const std::string& model) {
   AuvStackConfig c = loadAuvStack(cfg.config_dir, model);
   c.sim.seed = cfg.seed;
   c.sim.sonar_on = false;
+  c.navigation = "ins";  // a route alone, no USV to place USBL fixes: the simulator's INS-like estimate
   c.mission_enabled = false;
   c.use_truth = !cfg.navigation;
   if (cfg.auv) cfg.auv(c);

@@ -1,7 +1,5 @@
 #include "offshore_gnc/closed_loop/mission.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,6 +27,7 @@ void record(VehicleRecord& r, const VehicleState& truth, long step, const guidan
       const Eigen::Vector2d a = path[k - 1].head<2>(), d = path[k].head<2>() - a, p = truth.position.head<2>() - a;
       if (d.norm() > 0.0) e_truth = (d.x() * p.y() - d.y() * p.x()) / d.norm();
     }
+    r.xte_truth.emplace_back(truth.t, e_truth);
     if (k >= 2) {
       r.xte_tracking.emplace_back(truth.t, g->los.cross_track_error);
       r.xte_tracking_truth.emplace_back(truth.t, e_truth);
@@ -56,6 +55,7 @@ guidance::TrackingMetrics metricsOf(const std::vector<Eigen::Vector2d>& samples)
 
 void finish(VehicleRecord& r, const std::string& phase) {
   r.metrics = metricsOf(r.xte);
+  r.metrics_truth = metricsOf(r.xte_truth);
   r.tracking = metricsOf(r.xte_tracking);
   r.tracking_truth = metricsOf(r.xte_tracking_truth);
   r.approach_truth = metricsOf(r.xte_approach_truth);
@@ -70,13 +70,7 @@ MissionConfig loadMission(const std::string& config_dir, const std::string& scen
   c.scenario = sim::loadScenario(scenario_file);
   c.usv = loadUsvStack(config_dir);
   c.auv = loadAuvStack(config_dir, auv_model, scenario_file);
-  const YAML::Node m = YAML::LoadFile(scenario_file)["mission"];
-  if (m && m["expect"]) c.expect = m["expect"].as<std::string>();
-  if (m && m["max_sim_time"]) c.max_sim_time = m["max_sim_time"].as<double>();
-  if (m && m["hold_time"]) c.hold_time = m["hold_time"].as<double>();
-  if (c.expect != "target_reached" && c.expect != "no_target")
-    throw ConfigError("scenario '" + scenario_file + "': mission.expect '" + c.expect +
-                      "' is not one of: target_reached, no_target");
+  c.auv.usv_gps_antenna = c.usv.sim.gps.antenna;  // the USBL's mounting is from the point /usv_gps reports
   return c;
 }
 
@@ -85,35 +79,63 @@ MissionResult runMission(const MissionConfig& cfg) {
   MissionResult res;
   UsvStack usv(cfg.scenario, cfg.usv);
   AuvStack auv(cfg.scenario, cfg.auv);
-  std::optional<std::pair<double, Eigen::Vector3d>> in_flight;  // /target on its way through the relay
+  // the relay's topics over the radio: /usv_gps and /usv_heading to the AUV (best effort), /target back (reliable)
+  RadioLink<sim::GpsCompassReading> to_auv(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed);
+  RadioLink<Eigen::Vector3d> to_usv(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed + 1);
   long step = 0;
   double t = 0.0;
   std::optional<Eigen::Vector2d> wait_start;  // where the USV started waiting for the target
   bool target_delivered = false;
-  std::vector<double> hold_error;
+  std::vector<double> hold_error, nav_error;
   res.usv_wait_drift_m = kNaN;
   res.reason = "simulated time limit reached";
-  for (; t <= cfg.max_sim_time; ++step) {
+  res.min_clearance_m = std::numeric_limits<double>::infinity();
+  bool held = false;
+  const sim::Scenario::Mission& judge = cfg.scenario.mission;
+  const Fault* geofence = nullptr;
+  for (const auto& f : cfg.link_faults.faults())
+    if (f.name == "geofence") geofence = &f;
+  bool geofence_sent = false;
+  for (; t <= judge.max_sim_time; ++step) {
+    const bool link_up = !cfg.link_faults.active("link", t);
+    to_auv.setUp(link_up);
+    to_usv.setUp(link_up);
     usv.step();
+    if (usv.gpsNow()) to_auv.send(usv.time(), *usv.gpsNow(), false);
+    for (const auto& g : to_auv.receive(usv.time())) auv.onUsvGps(g);
+    auv.setUsvTruth(usv.truth());  // the simulated acoustic channel
     auv.step();
     t = usv.time();
-    usv.onPeerAlive(t);  // the relay's link is up for the whole run
-    auv.onPeerAlive(t);
+    if (link_up) {  // the relays' link status
+      usv.onPeerAlive(t);
+      auv.onPeerAlive(t);
+    }
+    if (geofence && !geofence_sent && t >= geofence->start) {  // the phantom arrives as a relayed /target would
+      usv.onTarget(Eigen::Vector2d(kGeofenceTargetNorth, 0.0), t);
+      geofence_sent = true;
+    }
     if (auto tg = auv.takeTarget()) {
       res.target = *tg;
-      in_flight = std::make_pair(t + cfg.relay_latency, *tg);
+      to_usv.send(t, *tg, true);
     }
-    if (in_flight && t >= in_flight->first) {
-      usv.onTarget(in_flight->second.head<2>(), t);
-      in_flight.reset();
+    for (const auto& tg : to_usv.receive(t)) {
+      usv.onTarget(tg.head<2>(), t);
       target_delivered = true;
     }
+    if (!usv.mission().refusal().empty() && (res.target_refusals.empty() || res.target_refusals.back() != usv.mission().refusal()))
+      res.target_refusals.push_back(usv.mission().refusal());
     const Eigen::Vector2d usv_ne = usv.truth().position.head<2>();
     if (!target_delivered && usv.mission().phase() == mission::UsvPhase::StationKeeping) {
       if (!wait_start) wait_start = usv_ne, res.usv_wait_drift_m = 0.0;
       res.usv_wait_drift_m = std::max(res.usv_wait_drift_m, (usv_ne - *wait_start).norm());
     }
     record(res.usv, usv.truth(), step, usv.guidanceStep(), usv.guidance());
+    if (step % 5 == 0) {  // the hull against every true shape, a fault's obstacle included, at 20 Hz
+      const auto& fault = usv.simulation().faultObstacle();
+      res.min_clearance_m = std::min(res.min_clearance_m,
+                                     sim::hullClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, cfg.scenario.world,
+                                                        fault ? std::vector<sim::Vessel>{*fault} : std::vector<sim::Vessel>{}));
+    }
     if (step % 5 == 0) {
       const VehicleState& x = usv.truth();
       const MotionReference& ref = usv.lastGuidance().reference;
@@ -127,25 +149,26 @@ MissionResult runMission(const MissionConfig& cfg) {
                                dp.distance});
     }
     record(res.auv, auv.truth(), step, auv.guidanceStep(), auv.guidance());
+    if (auv.estimate() && auv.estimate()->t >= t - 1e-9 && !auv.mission().finished())  // a new /auv/odom
+      nav_error.push_back((auv.estimate()->position.head<2>() - auv.truth().position.head<2>()).norm());
     // success: on station at the target (the USV mission says since when) for hold_time, as the main job
     const double on_station = usv.mission().onStationSince();
-    if (cfg.expect == "target_reached" && usv.mission().finished() && !std::isnan(on_station)) {
+    if (judge.expect_target && usv.mission().finished() && !std::isnan(on_station)) {
       const auto* g = usv.guidanceStep();
       if (g && g->reference.mode == ReferenceMode::kHold)
         hold_error.push_back((usv_ne - g->reference.point.head<2>()).norm());
-      if (t >= on_station + cfg.hold_time) {
-        res.success = true;
+      if (t >= on_station + judge.hold_time) {
+        held = true;
         res.reason = "USV holds position at the target: " + usv.mission().detail();
         break;
       }
     }
     if (auv.mission().phase() == mission::AuvPhase::NoTarget) {
-      res.success = cfg.expect == "no_target";
       res.reason = "AUV finished its coverage without a detection";
       break;
     }
   }
-  if (!res.success && usv.mission().finished() && std::isnan(usv.mission().onStationSince()))
+  if (!held && usv.mission().finished() && std::isnan(usv.mission().onStationSince()))
     res.reason += ": the USV arrived but never came on station (within the mission's station_radius)";
   finish(res.usv, mission::toString(usv.mission().phase()));
   finish(res.auv, mission::toString(auv.mission().phase()));
@@ -153,6 +176,14 @@ MissionResult runMission(const MissionConfig& cfg) {
   res.usv_safety = usv.supervisor().transitions();
   res.auv_safety = auv.supervisor().transitions();
   res.usv_hold_p95_m = percentile(hold_error, 0.95);
+  const guidance::TrackingMetrics nav = guidance::computeMetrics(nav_error);
+  res.auv_nav_rmse_m = nav.rmse;
+  res.auv_nav_max_m = nav_error.empty() ? kNaN : *std::max_element(nav_error.begin(), nav_error.end());
+  if (const UsblNavigation* u = auv.usblNavigation()) {
+    res.usbl_fixes_received = u->fixes().size();
+    for (const auto& f : u->fixes()) res.usbl_fixes_rejected += f.quality != usbl::Q_OK;
+  }
+  res.relay_lost = to_auv.lost() + to_usv.lost();
 
   const auto& targets = cfg.scenario.world.targets;
   res.target_error_m = res.usv_final_distance_to_target_m = kNaN;
@@ -167,16 +198,20 @@ MissionResult runMission(const MissionConfig& cfg) {
     res.usv_final_distance_to_target_m = best;
   }
   res.detection_time_s = auv.mission().detectionTime();
-  res.min_clearance_m = kNaN;
-  // as the report: each obstacle as a circle (a vessel's of half its larger extent)
-  std::vector<std::pair<Eigen::Vector2d, double>> circles;
-  for (const auto& b : cfg.scenario.world.buoys) circles.emplace_back(b.centre, b.radius);
-  for (const auto& v : cfg.scenario.world.vessels) circles.emplace_back(v.centre, std::max(v.length, v.width) / 2.0);
-  for (const auto& [c, r] : circles)
-    for (const auto& p : res.usv.truth) {
-      const double d = std::hypot(p(1) - c.x(), p(2) - c.y()) - r;
-      if (!(d >= res.min_clearance_m)) res.min_clearance_m = d;
-    }
+  if (std::isinf(res.min_clearance_m)) res.min_clearance_m = kNaN;  // nothing in the water
+
+  OutcomeFacts f;
+  f.expect_target = judge.expect_target;
+  f.held = held;
+  f.auv_no_target = auv.mission().phase() == mission::AuvPhase::NoTarget;
+  f.target_reported = res.target.has_value();
+  f.target_error_m = res.target_error_m;
+  f.target_tolerance_m = judge.target_tolerance;
+  f.min_clearance_m = std::isnan(res.min_clearance_m) ? std::numeric_limits<double>::infinity() : res.min_clearance_m;
+  for (const auto* log : {&res.usv_safety, &res.auv_safety})
+    for (const auto& tr : *log) f.safety_stop |= tr.to_active && tr.rule != "manual" && tr.action >= safety::Action::kHold;
+  res.outcome = classify(f);
+  res.success = res.outcome == Outcome::kSuccess;
   res.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   return res;
 }

@@ -1,13 +1,16 @@
 // mission_rosfree: the co-operative mission ROS-free in one process (closed_loop::runMission), on the same
 // scenario, configuration files and seeds as ./scripts/mission. Prints one JSON object with the figures the
-// mission report gives (metrics.json's keys); --out DIR also writes the tracks as CSV, and the USV's trace
-// (usv_trace.csv: truth, guidance's reference, the joystick command) for tuning. --fault PLAN injects the
-// simulators' faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault; not the main job's own, link and
-// geofence); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
+// mission report gives (metrics.json's keys; `outcome` one of closed_loop/outcome.h's, `reason` the sentence);
+// --out DIR also writes the tracks as CSV, and the USV's trace (usv_trace.csv: truth, guidance's reference, the
+// joystick command) for tuning. --fault PLAN injects the faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault: the simulators', and link and geofence between the
+// vehicles); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
 // --seed S draws every sensor's noise anew (the USV simulator seed 2S-1, the AUV's 2S: S = 1 is the launch files'
 // seeds 1 and 2); the scenario's own seeds (its current's) stay as written.
-//   mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--config DIR] [--relay-latency S]
-//                   [--fault PLAN] [--seed S] [--out DIR]
+// The AUV navigates on USBL fixes as in the main job (--auv-navigation ins: the simulator's INS-like estimate);
+// the radio between the vehicles delays every message --relay-latency seconds and loses best-effort ones with
+// probability --relay-loss.
+//   mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--auv-navigation usbl|ins] [--config DIR]
+//                   [--relay-latency S] [--relay-loss P] [--fault PLAN] [--seed S] [--out DIR]
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -64,7 +67,8 @@ void writeCsv(const std::string& path, const char* header, const std::vector<Eig
 
 int main(int argc, char** argv) {
   std::string scenario, model = "girona500", config = OFFSHORE_GNC_CONFIG_DIR, out, faults;
-  double latency = 0.0;
+  std::string navigation = "usbl";
+  double latency = -1.0, loss = 0.0;  // latency < 0: the mission's default
   long seed = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -77,6 +81,8 @@ int main(int argc, char** argv) {
     };
     if (a == "--scenario") scenario = next();
     else if (a == "--auv-model") model = next();
+    else if (a == "--auv-navigation") navigation = next();
+    else if (a == "--relay-loss") loss = number(a, next());
     else if (a == "--config") config = next();
     else if (a == "--relay-latency") latency = number(a, next());
     else if (a == "--out") out = next();
@@ -84,8 +90,8 @@ int main(int argc, char** argv) {
     else if (a == "--seed") seed = static_cast<long>(number(a, next()));
     else {
       std::fprintf(stderr,
-                   "usage: mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--config DIR] "
-                   "[--relay-latency S] [--fault PLAN] [--seed S] [--out DIR]\n");
+                   "usage: mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--auv-navigation usbl|ins] "
+                   "[--config DIR] [--relay-latency S] [--relay-loss P] [--fault PLAN] [--seed S] [--out DIR]\n");
       return 2;
     }
   }
@@ -95,15 +101,16 @@ int main(int argc, char** argv) {
   }
   try {
     closed_loop::MissionConfig cfg = closed_loop::loadMission(config, scenario, model);
-    cfg.relay_latency = latency;
+    if (latency >= 0.0) cfg.relay_latency = requireRange("--relay-latency", latency, 0, 60);
+    cfg.relay_loss = requireRange("--relay-loss", loss, 0, 1);
+    cfg.auv.navigation = navigation;
     requireRange("--seed", static_cast<double>(seed), 1, 1e9);
-    requireRange("--relay-latency", latency, 0, 60);
     cfg.usv.sim.seed = static_cast<std::uint64_t>(2 * seed - 1);
     cfg.auv.sim.seed = static_cast<std::uint64_t>(2 * seed);
+    cfg.auv.usbl_seed = static_cast<unsigned>(2 * seed - 1);  // config/usbl/usbl.yaml's seed 1 for S = 1
+    cfg.relay_seed = static_cast<unsigned>(seed);
     const FaultPlan plan = FaultPlan::parse(faults);  // ConfigError naming a bad item
-    for (const auto& f : plan.faults())
-      if (std::string(findFaultKind(f.name)->vehicle) == "both")
-        throw ConfigError("fault '" + f.name + "' is the main job's, between the masters: not in the ROS-free mission");
+    cfg.link_faults = plan.of("both");  // link, geofence: between the vehicles
     cfg.usv.sim.faults = plan.of("usv");
     cfg.auv.sim.faults = plan.of("auv");
     const closed_loop::MissionResult r = closed_loop::runMission(cfg);
@@ -116,21 +123,26 @@ int main(int argc, char** argv) {
         for (std::size_t i = 0; i < row.size(); ++i) f << row[i] << (i + 1 < row.size() ? "," : "\n");
     }
     std::printf(
-        "{\"success\": %s, \"outcome\": %s, \"usv_rmse_m\": %s, \"usv_sd_m\": %s, \"usv_mae_m\": %s, "
-        "\"usv_xte_samples\": %zu, \"auv_rmse_m\": %s, \"auv_sd_m\": %s, \"auv_mae_m\": %s, \"auv_xte_samples\": %zu, "
-        "\"auv_approach_rmse_m\": %s, \"auv_rmse_estimate_m\": %s, "
+        "{\"success\": %s, \"outcome\": %s, \"reason\": %s, \"usv_xte_est_rmse_m\": %s, \"usv_xte_est_sd_m\": %s, "
+        "\"usv_xte_est_mae_m\": %s, \"usv_xte_est_samples\": %zu, \"usv_xte_true_rmse_m\": %s, "
+        "\"auv_xte_true_rmse_m\": %s, \"auv_xte_true_sd_m\": %s, \"auv_xte_true_mae_m\": %s, \"auv_xte_true_samples\": %zu, "
+        "\"auv_approach_xte_true_rmse_m\": %s, \"auv_xte_est_rmse_m\": %s, "
         "\"target_error_m\": %s, \"detection_time_s\": %s, \"min_clearance_m\": %s, "
         "\"usv_final_distance_to_target_m\": %s, \"usv_wait_drift_m\": %s, \"usv_hold_p95_m\": %s, "
         "\"usv_final_phase\": %s, \"auv_final_phase\": %s, \"usv_safety\": %s, \"auv_safety\": %s, "
-        "\"sim_time_s\": %s, \"wall_time_s\": %s}\n",
-        r.success ? "true" : "false", str(r.reason).c_str(), num(r.usv.metrics.rmse).c_str(),
-        num(r.usv.metrics.sd).c_str(), num(r.usv.metrics.mae).c_str(), r.usv.metrics.samples,
+        "\"auv_nav_source\": %s, \"auv_nav_rmse_m\": %s, \"auv_nav_max_m\": %s, \"usbl_fixes_received\": %zu, "
+        "\"usbl_fixes_rejected\": %zu, \"relay_lost\": %zu, \"sim_time_s\": %s, \"wall_time_s\": %s}\n",
+        r.success ? "true" : "false", str(closed_loop::toString(r.outcome)).c_str(), str(r.reason).c_str(),
+        num(r.usv.metrics.rmse).c_str(), num(r.usv.metrics.sd).c_str(), num(r.usv.metrics.mae).c_str(),
+        r.usv.metrics.samples, num(r.usv.metrics_truth.rmse).c_str(),
         num(r.auv.tracking_truth.rmse).c_str(), num(r.auv.tracking_truth.sd).c_str(),
         num(r.auv.tracking_truth.mae).c_str(), r.auv.tracking_truth.samples, num(r.auv.approach_truth.rmse).c_str(),
         num(r.auv.tracking.rmse).c_str(), num(r.target_error_m).c_str(), num(r.detection_time_s).c_str(),
         num(r.min_clearance_m).c_str(), num(r.usv_final_distance_to_target_m).c_str(),
         num(r.usv_wait_drift_m).c_str(), num(r.usv_hold_p95_m).c_str(), str(r.usv.final_phase).c_str(), str(r.auv.final_phase).c_str(),
-        activations(r.usv_safety).c_str(), activations(r.auv_safety).c_str(), num(r.sim_time_s).c_str(),
+        activations(r.usv_safety).c_str(), activations(r.auv_safety).c_str(), str(navigation).c_str(),
+        num(r.auv_nav_rmse_m).c_str(), num(r.auv_nav_max_m).c_str(), r.usbl_fixes_received, r.usbl_fixes_rejected,
+        r.relay_lost, num(r.sim_time_s).c_str(),
         num(r.wall_time_s).c_str());
     return r.success ? 0 : 1;
   } catch (const std::exception& e) {

@@ -9,12 +9,15 @@
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/guidance/pipeline.h"
 #include "offshore_gnc/mission/mission.h"
+#include "offshore_gnc/navigation/auv_navigation_params.h"
 #include "offshore_gnc/navigation/auv_navigator.h"
 #include "offshore_gnc/navigation/gps_navigator.h"
 #include "offshore_gnc/perception/lidar_targets.h"
 #include "offshore_gnc/perception/sensor_frame.h"
 #include "offshore_gnc/perception/sonar_targets.h"
 #include "offshore_gnc/safety/supervisor.h"
+#include "offshore_gnc/sim/contact.h"
+#include "offshore_gnc/usbl/config.h"
 #include "offshore_gnc/usbl/session.h"
 
 using namespace offshore_gnc;
@@ -85,6 +88,16 @@ int main() {
         mission::CoverageArea::table(), {{"default", mission::CoverageArea()}}, "coverage/");
   table("GPS-compass navigation", "`config/usv.yaml` -> the GpsNavigation nodelet.",
         navigation::GpsNavigatorConfig::table(), {{"default", navigation::GpsNavigatorConfig()}});
+  table("USV hull", "`config/usv.yaml`: the outline a mission's outcome judges contact with (sim/contact.h).",
+        sim::HullFootprint::table(), {{"default", sim::HullFootprint()}});
+  table("AUV navigation inputs", "`config/navigation/auv_<model>.yaml` -> the AuvNavigation nodelet around its filter.",
+        navigation::AuvNavigationParams::table(), {{"default", navigation::AuvNavigationParams()}});
+  table("USBL mounting", "`config/usbl/usbl.yaml` -> the Usbl nodelet (and its simulator's mounting).",
+        usbl::mountingTable(), {{"default", usbl::Mounting()}});
+  table("USBL quality gates", "`config/usbl/usbl.yaml` -> the Usbl nodelet's positioning.",
+        usbl::qualityLimitsTable(), {{"default", usbl::QualityLimits()}});
+  table("Simulated USBL pair", "`config/usbl/usbl.yaml` -> the UsblSim nodelet and the ROS-free mission.",
+        usbl::beaconSimTable(), {{"default", usbl::BeaconSimConfig()}});
   table("AUV navigation", "`config/navigation/auv_<model>.yaml` -> the AuvNavigation nodelet (USBL + depth + AHRS + DVL).",
         navigation::AuvNavigatorConfig::table(), {{"default", navigation::AuvNavigatorConfig()}});
   table("Site origin",

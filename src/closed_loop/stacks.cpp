@@ -18,14 +18,6 @@ int stepsPer(double rate_hz, double dt) { return std::max(1, static_cast<int>(st
 
 namespace {
 
-YAML::Node loadYaml(const std::string& path) {
-  try {
-    return YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("cannot read '" + path + "': " + e.what());
-  }
-}
-
 perception::CloudView viewOf(const sim::PackedCloud& c) {
   using P = sim::PackedCloud;
   perception::CloudView v;
@@ -57,7 +49,7 @@ perception::SonarBeamView viewOf(const sim::SonarBeamReading& b) {
 }
 
 guidance::GuidanceParams readGuidance(const std::string& file) {
-  const YAML::Node y = loadYaml(file);
+  const YAML::Node y = loadYamlFile(file);
   guidance::GuidanceParams g = guidance::GuidanceParams::preset(y["vehicle"] ? y["vehicle"].as<std::string>() : "usv");
   readParamsYaml(y, guidance::GuidanceParams::table(), g, file);
   return g;
@@ -67,7 +59,7 @@ guidance::GuidanceParams readGuidance(const std::string& file) {
 control::ControlLoopParams readControl(const std::vector<std::string>& files) {
   control::ControlLoopParams c;
   for (const std::string& file : files) {
-    const YAML::Node y = loadYaml(file);
+    const YAML::Node y = loadYamlFile(file);
     readParamsYaml(y, control::ControlLoopParams::table(), c, file);
     if (c.vehicle == "usv") readParamsYaml(y, control::UsvControlParams::table(), c.usv, file);
     else if (c.vehicle == "girona500") readParamsYaml(y, control::Girona500ControlParams::table(), c.girona500, file);
@@ -77,7 +69,7 @@ control::ControlLoopParams readControl(const std::vector<std::string>& files) {
 }
 
 safety::SupervisorConfig readSafety(const std::string& file, safety::SupervisorConfig preset) {
-  readParamsYaml(loadYaml(file), safety::SupervisorConfig::table(), preset, file);
+  readParamsYaml(loadYamlFile(file), safety::SupervisorConfig::table(), preset, file);
   return preset;
 }
 
@@ -93,6 +85,15 @@ control::SafetyOverride overrideOf(const safety::Decision& d) {
     case A::kAbort: return O::kSurface;
     default: return O::kNone;
   }
+}
+
+// The AUV's supervisor as auv.launch configures it: without USBL (navigation:=ins) its USBL timeout is off.
+safety::SupervisorConfig auvSafety(const AuvStackConfig& c) {
+  if (c.navigation != "usbl" && c.navigation != "ins")
+    throw ConfigError("navigation '" + c.navigation + "' is not one of: usbl, ins");
+  safety::SupervisorConfig s = c.safety;
+  if (c.navigation == "ins") s.usbl_timeout = 0.0;
+  return s;
 }
 
 }  // namespace
@@ -112,10 +113,12 @@ void StackSupervisor::tick(long step, double t, control::ControlLoop& control) {
 UsvStackConfig loadUsvStack(const std::string& dir) {
   UsvStackConfig c;
   const std::string vehicle = dir + "/usv.yaml";
-  const YAML::Node v = loadYaml(vehicle);
+  const YAML::Node v = loadYamlFile(vehicle);
   readParamsYaml(v, navigation::GpsNavigatorConfig::table(), c.navigation, vehicle);
+  readParamsYaml(v, sim::HullFootprint::table(), c.hull, vehicle);
+  c.hull.validate();
   const std::string lidar = dir + "/perception/lidar_usv.yaml";
-  const YAML::Node l = loadYaml(lidar);
+  const YAML::Node l = loadYamlFile(lidar);
   readParamsYaml(l, perception::LidarConfig::table(), c.lidar, lidar);
   perception::SensorFrameParams f;
   readParamsYaml(l, perception::SensorFrameParams::table(), f, lidar);
@@ -123,7 +126,7 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
   c.guidance = readGuidance(dir + "/guidance/usv.yaml");
   c.control = readControl({dir + "/control/usv.yaml"});
   const std::string mission = dir + "/mission/usv.yaml";
-  readParamsYaml(loadYaml(mission), mission::UsvMissionParams::table(), c.mission, mission);
+  readParamsYaml(loadYamlFile(mission), mission::UsvMissionParams::table(), c.mission, mission);
   c.safety = readSafety(dir + "/safety/usv.yaml", safety::usvDefaults());  // as the nodelets read it
   c.sim.seed = 1;  // sim_usv.launch's default
   return c;
@@ -214,6 +217,7 @@ void UsvStack::step() {
   const double t = sim_.state().t;
   ++step_;
   guided_ = false;
+  gps_now_ = out.gps;
   safety::Supervisor& sup = safety_.core();  // fed as the SafetySupervisor nodelet is
   bool course = false;                       // the time to collision's inputs changed
   if (out.gps) {  // GpsNavigation: heading and velocity first, then the fix
@@ -277,7 +281,7 @@ AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, co
   AuvStackConfig c;
   c.model = model;
   const std::string sonar = dir + "/perception/sonar_auv.yaml";
-  const YAML::Node s = loadYaml(sonar);
+  const YAML::Node s = loadYamlFile(sonar);
   readParamsYaml(s, perception::SonarConfig::table(), c.sonar, sonar);
   perception::SensorFrameParams f;
   readParamsYaml(s, perception::SensorFrameParams::table(), f, sonar);
@@ -286,18 +290,18 @@ AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, co
   // as guidance_auv.launch with sim:=true: the simulated vehicle's own tuning over the vehicle's
   c.control = readControl({dir + "/control/" + model + ".yaml", dir + "/control/" + model + "_sim.yaml"});
   const std::string mission = dir + "/mission/auv.yaml";
-  const YAML::Node m = loadYaml(mission);
+  const YAML::Node m = loadYamlFile(mission);
   c.mission.coverage = mission::CoverageArea();
   readParamsYaml(m, mission::AuvMissionParams::table(), c.mission, mission);
   // as auv.launch: the scenario's auv/coverage when it has one, else the mission config's
-  const YAML::Node sc = scenario_file.empty() ? YAML::Node() : loadYaml(scenario_file);
+  const YAML::Node sc = scenario_file.empty() ? YAML::Node() : loadYamlFile(scenario_file);
   if (sc && yamlAt(sc, "auv/coverage").IsDefined())
     readParamsYaml(sc, mission::CoverageArea::table(), c.mission.coverage, scenario_file, "auv/coverage/");
   else
     readParamsYaml(m, mission::CoverageArea::table(), c.mission.coverage, mission, "coverage/");
   c.mission.validate();
   c.safety = readSafety(dir + "/safety/auv.yaml", safety::auvDefaults());
-  c.safety.usbl_timeout = 0.0;  // no USBL in the ROS-free stack (AuvStackConfig::safety)
+  c.usbl = loadUsblNavigation(dir, model);
   c.sim.seed = 2;  // sim_auv.launch's default
   c.sim.auv = model == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
   return c;
@@ -310,10 +314,32 @@ AuvStack::AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg)
       guidance_(cfg.guidance),
       control_(cfg.control),
       mission_(cfg.mission),
-      safety_(cfg.safety, cfg.sim.dt),
+      safety_(auvSafety(cfg), cfg.sim.dt),
       guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
-      mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {}
+      mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)),
+      navigation_every_(stepsPer(cfg.usbl.params.rate, cfg.sim.dt)) {
+  if (cfg.navigation == "usbl")
+    usbl_.emplace(cfg.usbl, geo::LocalNed(scenario.origin), cfg.usv_gps_antenna, cfg.usbl_seed, cfg.sim.faults);
+}
+
+void AuvStack::onUsvGps(const sim::GpsCompassReading& g) {
+  if (!usbl_) return;
+  usbl_->usvGps(g.t, g.fix);
+  usbl_->usvHeading(g.t, g.heading);
+}
+
+void AuvStack::navigate(const VehicleState& est, double t) {
+  estimate_ = est;
+  const VehicleState& s = cfg_.use_truth ? sim_.state() : est;
+  poses_.add(s);
+  guidance_.setState(s, t);
+  control_.onState(s, t);
+  safety::Supervisor& sup = safety_.core();
+  sup.heard(safety::Source::kNavigation, t);
+  sup.position(t, s.position.x(), s.position.y());
+  sup.depth(t, s.position.z());
+}
 
 void AuvStack::perceive() {
   // SonarTargets: each beam positioned with the navigation pose at its stamp; a sweep's targets to the mission.
@@ -352,15 +378,16 @@ void AuvStack::step() {
   ++step_;
   guided_ = false;
   safety::Supervisor& sup = safety_.core();  // fed as the SafetySupervisor nodelet is
-  if (out.odom) {  // the INS estimate: /auv/odom and its TF
-    estimate_ = out.odom;
-    const VehicleState& s = cfg_.use_truth ? sim_.state() : *out.odom;
-    poses_.add(s);
-    guidance_.setState(s, t);
-    control_.onState(s, t);
-    sup.heard(safety::Source::kNavigation, t);
-    sup.position(t, s.position.x(), s.position.y());
-    sup.depth(t, s.position.z());
+  if (usbl_) {  // the Usbl and AuvNavigation nodelets
+    if (out.depth) usbl_->depth(out.depth->t, out.depth->pressure_pa);
+    if (out.ahrs) usbl_->ahrs(out.ahrs->t, out.ahrs->roll, out.ahrs->pitch, out.ahrs->yaw, out.ahrs->angular_rate);
+    if (out.dvl) usbl_->dvl(out.dvl->t, out.dvl->velocity);
+    usbl_->step(t, usv_truth_, sim_.state());
+    for (double s : usbl_->acceptedNow()) sup.heard(safety::Source::kUsbl, s);
+    if (step_ % navigation_every_ == 0)
+      if (auto e = usbl_->estimate(t)) navigate(*e, t);
+  } else if (out.odom) {  // the simulator's INS estimate: /auv/odom and its TF
+    navigate(*out.odom, t);
   }
   if (out.depth) sup.heard(safety::Source::kDepth, t);
   if (out.sonar) beams_.push_back(sim_.beam());
@@ -373,6 +400,7 @@ void AuvStack::step() {
   if (step_ % guidance_every_ == 0 && guidance_.update(t, guidance_every_ * cfg_.sim.dt, last_)) {
     guided_ = true;
     control_.onReference(last_.reference, t);
+    if (usbl_) usbl_->commandedSurge(t, last_.reference.surge);  // /auv/guidance/status desired_surge
     if (cfg_.mission_enabled) {
       mission_.onGuidance(last_.los.mode, t);
       if (auto p = mission_.takePath()) guidance_.setPath(*p);

@@ -30,6 +30,7 @@
 
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/models/state.h"
+#include "offshore_gnc/navigation/auv_navigation_params.h"
 #include "offshore_gnc/navigation/auv_navigator.h"
 #include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
@@ -39,7 +40,6 @@ namespace offshore_gnc {
 
 namespace {
 
-constexpr double kGravity = 9.80665;
 constexpr double kNoFixGraceS = 60.0;  // kNoFix is an ERROR in diagnostics only after this long [s, ROS time]
 
 const char* statusName(navigation::NavStatus s) {
@@ -78,17 +78,9 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     ros::NodeHandle& pnh = getPrivateNodeHandle();
     ros_util::ParamReader p(pnh);
     navigation::AuvNavigatorConfig cfg;
-    double rate = 10.0;
     try {
       ros_util::readParams(p, navigation::AuvNavigatorConfig::table(), cfg);
-      rate = p.number("rate", 20.0, 0.1, 100.0);  // the simulator's INS estimate's rate: perception waits for TF at it
-      // Girona500: the DVL's velocity over ground; aColor (no DVL): the commanded surge along the AHRS heading
-      use_dvl_ = p.flag("use_dvl", true);
-      // fix covariance: isotropic, sigma = max(fix_min_sigma, slant range * fix_angle_sigma)
-      fix_min_sigma_ = p.number("fix_min_sigma", 1.0, 0.001, 100.0);  // the USV GPS's error and its pose at the fix time
-      fix_angle_sigma_ = p.number("fix_angle_sigma", 0.01, 0.0, 0.5);
-      water_density_ = p.number("water_density", 1000.0, 990, 1050);
-      surface_pressure_ = p.number("surface_pressure", 101325.0, 80000, 120000);
+      ros_util::readParams(p, navigation::AuvNavigationParams::table(), params_);
       base_frame_ = p.text("base_frame", "auv/base_link");
       nav_ = std::make_unique<navigation::AuvNavigator>(cfg);
     } catch (const ConfigError& e) {
@@ -104,7 +96,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     fix_sub_ = nh.subscribe("/auv/usbl/fix", 10, &AuvNavigationNodelet::onFix, this);
     pressure_sub_ = nh.subscribe("/auv/pressure", 20, &AuvNavigationNodelet::onPressure, this);
     imu_sub_ = nh.subscribe("/auv/imu", 100, &AuvNavigationNodelet::onImu, this);
-    if (use_dvl_) dvl_sub_ = nh.subscribe("/auv/dvl", 20, &AuvNavigationNodelet::onDvl, this);
+    if (params_.use_dvl) dvl_sub_ = nh.subscribe("/auv/dvl", 20, &AuvNavigationNodelet::onDvl, this);
     // the commanded surge always: the filter uses it only while no DVL sample is fresh (dvl_timeout)
     guidance_sub_ = nh.subscribe("/auv/guidance/status", 10, &AuvNavigationNodelet::onGuidance, this);
 
@@ -112,9 +104,9 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     updater_->setHardwareID("auv_navigation");
     updater_->add("navigation", [this](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnose(s); });
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
-    timer_ = nh.createTimer(ros::Duration(1.0 / rate), &AuvNavigationNodelet::onTimer, this);
-    NODELET_INFO("AUV navigation at %.1f Hz, velocity from %s; no /auv/odom until the first USBL fix", rate,
-                 use_dvl_ ? "the DVL (/auv/dvl)" : "the commanded surge (/auv/guidance/status)");
+    timer_ = nh.createTimer(ros::Duration(1.0 / params_.rate), &AuvNavigationNodelet::onTimer, this);
+    NODELET_INFO("AUV navigation at %.1f Hz, velocity from %s; no /auv/odom until the first USBL fix", params_.rate,
+                 params_.use_dvl ? "the DVL (/auv/dvl)" : "the commanded surge (/auv/guidance/status)");
   }
 
   // ---- inputs ----
@@ -130,10 +122,8 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
       NODELET_WARN_THROTTLE(5.0, "ignoring a USBL fix without a finite position_ned, range or stamp");
       return;
     }
-    const double sigma = std::max(fix_min_sigma_, m->range * fix_angle_sigma_);
-    const Eigen::Matrix3d cov = Eigen::Matrix3d::Identity() * sigma * sigma;
     std::lock_guard<std::mutex> l(mutex_);
-    if (!nav_->usblFix(m->header.stamp.toSec(), ned, cov))
+    if (!nav_->usblFix(m->header.stamp.toSec(), ned, params_.fixCovariance(m->range)))
       NODELET_DEBUG("USBL fix refused by the filter (gate or too old; see the counters)");
   }
 
@@ -142,9 +132,8 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
       counters_.increment("bad_pressure");
       return;
     }
-    const double depth = (m->fluid_pressure - surface_pressure_) / (water_density_ * kGravity);
     std::lock_guard<std::mutex> l(mutex_);
-    nav_->depth(m->header.stamp.toSec(), depth);
+    nav_->depth(m->header.stamp.toSec(), params_.depthOf(m->fluid_pressure));
   }
 
   // REP-103: orientation of the FLU body in ENU, angular velocity in FLU (z counter-clockwise).
@@ -291,7 +280,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
         break;
     }
     s.add("status", statusName(status_));
-    s.add("velocity_source", use_dvl_ ? "dvl" : "commanded_surge");
+    s.add("velocity_source", params_.use_dvl ? "dvl" : "commanded_surge");
     ros_util::addCounters(s, nav_->counters(), {"bad_input"});
     ros_util::addCounters(s, counters_, {"bad_fix", "bad_pressure", "bad_imu", "bad_dvl"});
   }
@@ -299,8 +288,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
   std::mutex mutex_;  // nav_ and the AHRS attitude below; callbacks run concurrently
   std::unique_ptr<navigation::AuvNavigator> nav_;
   Counters counters_;  // this nodelet's own (thread-safe)
-  bool use_dvl_ = true;
-  double fix_min_sigma_ = 1.0, fix_angle_sigma_ = 0.01, water_density_ = 1000.0, surface_pressure_ = 101325.0;
+  navigation::AuvNavigationParams params_;
   std::string base_frame_;
   // the latest AHRS attitude and rates (orientation of the published pose; yaw is the filter's)
   double roll_ = 0.0, pitch_ = 0.0;

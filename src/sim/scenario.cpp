@@ -83,7 +83,6 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
     throw ConfigError("scenario '" + source + "': not valid YAML: " + e.what());
   }
   if (!root || !root.IsMap()) throw ConfigError("scenario '" + source + "': must be a YAML mapping");
-  // "mission" (expected outcome, time limit) is the mission job's section, checked by scenario_check
   r.keys(root, "", {"name", "origin", "sea_state", "current", "wind", "waves", "air_density", "water_density",
                    "bottom", "usv", "auv", "obstacles", "targets", "walls", "map", "mission"});
   Scenario s;
@@ -189,6 +188,18 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
       if ((w.b - w.a).norm() < 0.1) r.fail(p, "has zero length (its two ends coincide)");
       s.world.walls.push_back(w);
     }
+  }
+  if (const YAML::Node m = root["mission"]) {
+    r.keys(m, "mission", {"expect", "max_sim_time", "hold_time", "target_tolerance"});
+    if (m["expect"]) {
+      const std::string e = r.text(m, "mission", "expect");
+      if (e != "target_reached" && e != "no_target")
+        r.fail("mission.expect", "= '" + e + "' is not one of: target_reached no_target");
+      s.mission.expect_target = e == "target_reached";
+    }
+    s.mission.max_sim_time = r.opt(m, "mission", "max_sim_time", s.mission.max_sim_time, 10.0, 86400.0);
+    s.mission.hold_time = r.opt(m, "mission", "hold_time", s.mission.hold_time, 0.0, 3600.0);
+    s.mission.target_tolerance = r.opt(m, "mission", "target_tolerance", s.mission.target_tolerance, 0.01, 1000.0);
   }
   if (const YAML::Node m = root["map"]) {
     r.keys(m, "map", {"image", "resolution", "north", "east", "threshold"});

@@ -20,6 +20,7 @@
 #include <mutex>
 #include <thread>
 
+#include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
@@ -52,12 +53,7 @@ class UsblNodelet : public nodelet::Nodelet {
       usbl::SessionParams sp;
       ros_util::readParams(p, usbl::SessionParams::table(), sp);
       session_ = std::make_unique<usbl::TransceiverSession>(sp);
-      lim.max_fit_error = p.number("max_fit_error", 2.0, 0.01, 300);
-      lim.max_age_s = p.number("max_age", 2.0, 0.01, 60);
-      lim.max_pose_gap_s = p.number("max_pose_gap", 0.5, 0.01, 10);
-      lim.max_pose_wait_s = p.number("max_pose_wait", 1.5, 0.0, 60);
-      lim.max_depth_error_m = p.number("max_depth_error", 3.0, 0.01, 1000);
-      lim.max_depth_gap_s = p.number("max_depth_gap", 1.0, 0.01, 10);
+      ros_util::readParams(p, usbl::qualityLimitsTable(), lim);
       water_density_ = p.number("water_density", 1000.0, 990, 1050);
       surface_pressure_ = p.number("surface_pressure", 101325.0, 80000, 120000);
       frame_id_ = p.text("frame_id", "usv/usbl");

@@ -15,6 +15,7 @@
 #include <mutex>
 #include <thread>
 
+#include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/faults.h"
@@ -47,13 +48,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
       // Without it every simulated fix came out 2.5 m too shallow and the 3 m depth gate refused about 20 %.
       const auto antenna = p.numbers("gps_antenna", {0.0, 0.0, -2.5}, 3, -50, 50);
       cfg.mount.offset += Eigen::Vector3d(antenna[0], antenna[1], antenna[2]);
-      cfg.sound_speed = p.number("sound_speed", 1500.0, 1300, 1700);
-      cfg.range_sigma = p.number("range_sigma", 0.05, 0, 100);
-      cfg.angle_sigma = deg2rad(p.number("angle_sigma_deg", 0.5, 0, 45));
-      cfg.dropout_probability = p.number("dropout_probability", 0.05, 0, 1);
-      cfg.max_range = p.number("max_range", 1000.0, 1, 20000);
-      cfg.timeout = p.number("timeout", 1.0, 0.05, 30);
-      cfg.fit_error = p.number("fit_error", 0.3, 0, 300);
+      ros_util::readParams(p, usbl::beaconSimTable(), cfg);
       cfg.seed = static_cast<unsigned>(p.integer("seed", 1, 0, 1 << 30));
       faults_ = std::make_unique<ros_util::FaultInjector>(nh, "auv", std::vector<std::string>{"usbl"});
       cfg.faults = faults_->plan();

@@ -4,8 +4,9 @@
 // relay would, until the USV holds position at the target, the AUV ends its search without one, or the time
 // limit. The same scenario, configuration and seeds as ./scripts/mission, with the figures its report gives
 // (metrics over the same samples: guidance's cross-track error in path following; the AUV's from the first
-// waypoint reached and on the truth, as the report's auv_rmse_m). The AUV navigates on the simulator's INS-like
-// estimate here, not on USBL fixes as in the ROS mission.
+// waypoint reached and on the truth, as the report's auv_xte_true_rmse_m). The AUV navigates as in the ROS mission: on USBL
+// fixes placed by the USV's GPS and heading relayed over the radio (closed_loop/usbl_navigation.h); the radio
+// delays what crosses it and loses best-effort messages as configured.
 #include <Eigen/Core>
 
 #include <array>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "offshore_gnc/closed_loop/outcome.h"
 #include "offshore_gnc/closed_loop/stacks.h"
 #include "offshore_gnc/guidance/metrics.h"
 #include "offshore_gnc/sim/scenario.h"
@@ -25,43 +27,55 @@ struct MissionConfig {
   sim::Scenario scenario;
   UsvStackConfig usv;
   AuvStackConfig auv;
-  std::string expect = "target_reached";  // or no_target (the scenario's mission section)
-  double max_sim_time = 900.0;            // [s]
-  double hold_time = 60.0;                // success once the USV has held this long at the target [s]
-  double relay_latency = 0.0;             // simulated seconds from the AUV's /target to the USV's [s]
+  double relay_latency = 0.1;             // the radio between the masters: every message this late [s]
+  double relay_loss = 0.0;                // and best-effort ones (GPS, heading) lost with this probability
+  unsigned relay_seed = 1;
+  // The main job's own faults, between the vehicles (offshore_gnc::faultKinds() "both"): `link` takes the radio
+  // down, `geofence` hands the USV a target 5 km north of the origin as if the AUV had sent it.
+  FaultPlan link_faults;
 };
-// The scenario, its mission section and the vehicles' configuration files under config_dir.
+// The scenario (its mission section says how a run is judged) and the vehicles' configuration files under
+// config_dir.
 MissionConfig loadMission(const std::string& config_dir, const std::string& scenario_file,
                           const std::string& auv_model = "girona500");
 
 struct VehicleRecord {
   std::vector<Eigen::Vector4d> truth;                 // (t, north, east, down) at 20 Hz, as the bags record it
   std::vector<Eigen::Vector2d> xte;                   // (t, e) of guidance's samples in path following
+  std::vector<Eigen::Vector2d> xte_truth;             // the same samples on the truth (distance from the active leg)
   // The same samples split as the report splits an AUV's (thesis Table 4.4 leaves the approach out): from the
   // first waypoint reached (active leg 2 on) on guidance's estimate and on the truth (the true position's
   // distance from the active leg), and the approach before it on the truth.
   std::vector<Eigen::Vector2d> xte_tracking, xte_tracking_truth, xte_approach_truth;
   std::vector<Eigen::Vector3d> planned;               // the longest path guidance planned
   std::vector<guidance::SbbBox> boxes;                // the last safety boxes
-  guidance::TrackingMetrics metrics;                  // over xte
+  guidance::TrackingMetrics metrics, metrics_truth;   // over xte, xte_truth
   guidance::TrackingMetrics tracking, tracking_truth, approach_truth;  // over the split samples
   std::string final_phase;
 };
 
 struct MissionResult {
-  bool success = false;
-  std::string reason;
+  bool success = false;    // outcome == kSuccess
+  Outcome outcome = Outcome::kTimeout;
+  std::string reason;      // the sentence
   VehicleRecord usv, auv;
   std::optional<Eigen::Vector3d> target;  // what the AUV reported
   double target_error_m = 0.0;            // horizontal, against the nearest true target (NaN without one)
   double detection_time_s = 0.0;          // from the start of the coverage (NaN without a detection)
-  double min_clearance_m = 0.0;           // the USV's closest approach to an obstacle's surface (NaN without one)
+  double min_clearance_m = 0.0;           // the USV hull's closest approach to an obstacle (sim/contact.h; <= 0:
+                                          // contact; NaN without obstacles)
   double usv_final_distance_to_target_m = 0.0;
   // Station keeping (docs/mission.md): the largest distance from where the USV started waiting until the target
   // came, and the 95th percentile distance from its hold point over the hold at the target (NaN without one).
   double usv_wait_drift_m = 0.0, usv_hold_p95_m = 0.0;
+  // The AUV's navigation during its mission (until it reports finished): its estimate against its truth,
+  // horizontal, at the estimate's rate (the report's auv_nav_rmse_m); the USBL fixes placed and how many the quality
+  // gates refused (usbl_fixes_received, usbl_fixes_rejected; none with navigation ins).
+  double auv_nav_rmse_m = 0.0, auv_nav_max_m = 0.0;
+  std::size_t usbl_fixes_received = 0, usbl_fixes_rejected = 0, relay_lost = 0;
   double sim_time_s = 0.0, wall_time_s = 0.0;
   std::vector<safety::Transition> usv_safety, auv_safety;  // each supervisor's activations and releases
+  std::vector<std::string> target_refusals;  // the USV mission's reasons for refusing a target it was handed
   // The USV at 20 Hz, what a tuner looks at (mission_rosfree --out writes it as usv_trace.csv, kUsvTraceHeader):
   // truth, guidance's reference and cross-track, the joystick command, dynamic positioning's last step.
   std::vector<std::array<double, 19>> usv_trace;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "offshore_gnc/closed_loop/usbl_navigation.h"
 #include "offshore_gnc/control/control_loop.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/guidance/pipeline.h"
@@ -25,6 +26,7 @@
 #include "offshore_gnc/perception/sonar_targets.h"
 #include "offshore_gnc/safety/collision.h"
 #include "offshore_gnc/safety/supervisor.h"
+#include "offshore_gnc/sim/contact.h"
 #include "offshore_gnc/sim/simulation.h"
 
 namespace offshore_gnc {
@@ -55,6 +57,7 @@ class StackSupervisor {
 struct UsvStackConfig {
   sim::UsvSimulation::Config sim;     // sim_usv.launch: seed 1, the simulator's defaults
   navigation::GpsNavigatorConfig navigation;  // config/usv.yaml
+  sim::HullFootprint hull;            // config/usv.yaml: the outline that judges contact
   perception::LidarConfig lidar;      // config/perception/lidar_usv.yaml
   double pose_timeout = 0.1;          // tf_timeout: a frame waits this long for the pose at its stamp [s]
   guidance::GuidanceParams guidance;  // config/guidance/usv.yaml
@@ -92,6 +95,8 @@ class UsvStack {
   const control::ActuatorCommand& command() const { return command_; }  // the last control step's
   const control::ControlLoop& control() const { return control_; }
   const StackSupervisor& supervisor() const { return safety_; }
+  // The GPS-compass reading of this step, if one came (what goes out on /usv_gps and /usv_heading).
+  const std::optional<sim::GpsCompassReading>& gpsNow() const { return gps_now_; }
 
  private:
   void perceive(double t);
@@ -110,6 +115,7 @@ class UsvStack {
   std::vector<guidance::SbbObstacle> obstacles_;
   std::vector<safety::SeenObstacle> seen_;  // the same, as the supervisor takes them
   std::optional<VehicleState> estimate_;
+  std::optional<sim::GpsCompassReading> gps_now_;
   guidance::GuidanceOutput last_;
   control::ActuatorCommand command_;
   StackSupervisor safety_;
@@ -127,9 +133,13 @@ struct AuvStackConfig {
   guidance::GuidanceParams guidance;  // config/guidance/<model>.yaml
   control::ControlLoopParams control; // config/control/<model>.yaml
   mission::AuvMissionParams mission;  // config/mission/auv.yaml, the coverage from the scenario when it has one
-  // config/safety/auv.yaml, without the USBL timeout: the ROS-free AUV navigates on the simulator's INS-like
-  // estimate (auv.launch navigation:=ins), no USBL fix ever comes
-  safety::SupervisorConfig safety = safety::auvDefaults();
+  safety::SupervisorConfig safety = safety::auvDefaults();  // config/safety/auv.yaml
+  // auv.launch navigation: usbl (the default: UsblNavigation, the USV's relayed GPS and heading placing the
+  // fixes) or ins (the simulator's INS-like estimate, without USBL: the supervisor's USBL timeout is off)
+  std::string navigation = "usbl";
+  UsblNavigationConfig usbl;          // config/usbl/usbl.yaml, config/navigation/auv_<model>.yaml
+  unsigned usbl_seed = 1;             // the beacon simulator's (config/usbl/usbl.yaml seed)
+  Eigen::Vector3d usv_gps_antenna{0, 0, -2.5};  // where the USV's GPS reports from (its simulator's gps/antenna)
   double mission_period = 0.5;
   bool mission_enabled = true;
   bool use_truth = false;
@@ -142,6 +152,11 @@ class AuvStack {
   AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg);
   void step();
   void onPeerAlive(double t) { safety_.core().heard(safety::Source::kLink, t); }  // the relay's link is up
+  // What reaches the AUV's master from the USV: its GPS fix and heading over the relay, and (simulation only, the
+  // acoustic channel) its true pose for the beacon simulator; set before step().
+  void onUsvGps(const sim::GpsCompassReading& g);
+  void setUsvTruth(const VehicleState& s) { usv_truth_ = s; }
+  const UsblNavigation* usblNavigation() const { return usbl_ ? &*usbl_ : nullptr; }
   void setRoute(const std::vector<Eigen::Vector3d>& path) { guidance_.setPath(path); }  // without the mission
   const sim::AuvSimulation& simulation() const { return sim_; }
   const StackSupervisor& supervisor() const { return safety_; }
@@ -159,9 +174,12 @@ class AuvStack {
 
  private:
   void perceive();
+  void navigate(const VehicleState& s, double t);  // a new /auv/odom: to TF, guidance, control, the supervisor
 
   AuvStackConfig cfg_;
   sim::AuvSimulation sim_;
+  std::optional<UsblNavigation> usbl_;
+  VehicleState usv_truth_;
   navigation::PoseHistory poses_;
   perception::SonarTargetExtractor sonar_;
   guidance::GuidancePipeline guidance_;
@@ -175,7 +193,7 @@ class AuvStack {
   StackSupervisor safety_;
   bool guided_ = false;
   long step_ = 0;
-  int guidance_every_, control_every_, mission_every_;
+  int guidance_every_, control_every_, mission_every_, navigation_every_;
 };
 
 }  // namespace closed_loop

@@ -22,6 +22,10 @@ struct FaultKind {
                         // what does: the navigation for dvl, the USV mission's region check for geofence)
 };
 
+// The geofence fault's target: this far north of the origin [m] (the main job publishes it, the ROS-free mission
+// hands it to the USV), outside the USV's default operating region (a 2 km square about the origin).
+constexpr double kGeofenceTargetNorth = 5000.0;
+
 inline const std::vector<FaultKind>& faultKinds() {
   static const std::vector<FaultKind> kinds{
       {"gps", "usv", "the GPS-compass is silent (/usv_gps, /usv_heading, /usv/gps/velocity)", "gps_timeout"},

@@ -56,6 +56,14 @@ class ParamTable {
     return add(ParamKind::kNumber, name, lo, hi, unit, doc,
                [outer, m](Spec& s) { s.number = [outer, m](P& p) -> double& { return (p.*outer).*m; }; });
   }
+  // Any number reachable from P that is not a plain member (an Eigen vector's element, say); `scale` as degrees().
+  ParamTable& numberAt(const std::string& name, std::function<double&(P&)> access, double lo, double hi,
+                       const char* unit, const char* doc, double scale = 1.0) {
+    return add(ParamKind::kNumber, name, lo, hi, unit, doc, [&](Spec& s) {
+      s.scale = scale;
+      s.number = std::move(access);
+    });
+  }
   ParamTable& integer(const std::string& name, int P::*m, int lo, int hi, const char* doc) {
     return add(ParamKind::kInteger, name, lo, hi, "", doc, [m](Spec& s) { s.integer = [m](P& p) -> int& { return p.*m; }; });
   }

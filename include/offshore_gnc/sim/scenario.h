@@ -45,6 +45,12 @@ struct Scenario {
   World world;
   std::string map_image;  // absolute path, empty when none
   MapGrid map;
+  struct Mission {  // how a run of it is judged (closed_loop/outcome.h; both runners)
+    bool expect_target = true;     // mission.expect: target_reached (true) or no_target
+    double max_sim_time = 900.0;   // [s] the run ends (timeout) at this simulated time
+    double hold_time = 60.0;       // [s] on station at the target this long: success
+    double target_tolerance = 2.0; // [m] a reported target farther from the true one is the wrong target
+  } mission;
 };
 
 // Throws ConfigError("scenario 'file': key 'obstacles[2].radius' ...") on any problem.

@@ -1,0 +1,47 @@
+#include "offshore_gnc/usbl/config.h"
+
+#include "offshore_gnc/common/angles.h"
+
+namespace offshore_gnc {
+namespace usbl {
+
+const ParamTable<Mounting>& mountingTable() {
+  using M = Mounting;
+  static const ParamTable<M> t = ParamTable<M>()
+      .numberAt("mount/x", [](M& m) -> double& { return m.offset.x(); }, -50, 50, "m", "transceiver forward of the GPS point")
+      .numberAt("mount/y", [](M& m) -> double& { return m.offset.y(); }, -50, 50, "m", "to starboard")
+      .numberAt("mount/z", [](M& m) -> double& { return m.offset.z(); }, -50, 50, "m", "below the GPS point")
+      .degrees("mount/roll", &M::roll, -180, 180, "transceiver roll in the body frame")
+      .degrees("mount/pitch", &M::pitch, -90, 90, "pitch")
+      .degrees("mount/yaw", &M::yaw, -180, 180, "yaw (the transceiver's x from the bow)");
+  return t;
+}
+
+const ParamTable<QualityLimits>& qualityLimitsTable() {
+  using Q = QualityLimits;
+  static const ParamTable<Q> t = ParamTable<Q>()
+      .number("max_fit_error", &Q::max_fit_error, 0.01, 300, "", "SeaTrac USBL fit error above this: rejected")
+      .number("max_age", &Q::max_age_s, 0.01, 60, "s", "a fix older than this when processed: stale")
+      .number("max_pose_gap", &Q::max_pose_gap_s, 0.01, 10, "s", "the USV's GPS and heading this close to the fix time")
+      .number("max_pose_wait", &Q::max_pose_wait_s, 0.0, 60, "s",
+              "a fix waits this long for the relayed USV pose to reach its time (below max_age)")
+      .number("max_depth_error", &Q::max_depth_error_m, 0.01, 1000, "m", "|USBL depth - the AUV's depth sensor| above this: rejected")
+      .number("max_depth_gap", &Q::max_depth_gap_s, 0.01, 10, "s", "a depth sample this close to the fix, else no depth gate");
+  return t;
+}
+
+const ParamTable<BeaconSimConfig>& beaconSimTable() {
+  using B = BeaconSimConfig;
+  static const ParamTable<B> t = ParamTable<B>()
+      .number("sound_speed", &B::sound_speed, 1300, 1700, "m/s", "simulated speed of sound (times the replies)")
+      .number("range_sigma", &B::range_sigma, 0, 100, "m", "simulated range noise")
+      .degrees("angle_sigma_deg", &B::angle_sigma, 0, 45, "simulated azimuth and elevation noise")
+      .number("dropout_probability", &B::dropout_probability, 0, 1, "", "a ping that gets no reply")
+      .number("max_range", &B::max_range, 1, 20000, "m", "beyond it every ping times out")
+      .number("timeout", &B::timeout, 0.05, 30, "s", "the transceiver's response timeout before PING_ERROR")
+      .number("fit_error", &B::fit_error, 0, 300, "", "the fit error the simulated transceiver reports");
+  return t;
+}
+
+}  // namespace usbl
+}  // namespace offshore_gnc
