@@ -10,6 +10,7 @@ namespace {
 sim::Scenario scenarioOf(const ClosedLoopConfig& cfg) {
   sim::Scenario sc;
   sc.name = "closed_loop";
+  sc.sea = models::seaState(cfg.sea_state);
   sc.sea.current_north = cfg.current.x();
   sc.sea.current_east = cfg.current.y();
   sc.usv = {cfg.start.x(), cfg.start.y(), cfg.start_yaw};
