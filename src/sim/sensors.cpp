@@ -216,17 +216,19 @@ void Lidar::spray(const VehicleState& s, const Eigen::Vector3d& sensor, const Ei
   std::poisson_distribution<int> count(mean);
   const int n = count(rng_);
   const int half = static_cast<int>(0.5 * std::min(cfg_.sea.spray_sector, cfg_.aperture) / cfg_.step);
-  for (int k = 0; k < n; ++k) {
-    const int b = std::clamp(beams_ / 2 + static_cast<int>(std::lround((2 * u_(rng_) - 1) * half)), 0, beams_ - 1);
-    const int l = static_cast<int>(u_(rng_) * cfg_.layers) % cfg_.layers;
-    const double r = cfg_.min_range + u_(rng_) * (cfg_.sea.spray_range - cfg_.min_range);
-    const double e = cfg_.layer_elevation[l], az = out.azimuth[b];
-    const double z = sensor.z() + r * (to_ned * Eigen::Vector3d(std::cos(e) * std::cos(az), std::cos(e) * std::sin(az),
-                                                                -std::sin(e))).z();
-    if (z > 0.0 || z < -cfg_.sea.spray_height) continue;  // the beam is under the water or above the spray there
-    float& range = out.ranges[static_cast<std::size_t>(l) * beams_ + b];
-    if (!(range <= r)) range = static_cast<float>(r);  // a droplet nearer than what the beam saw hides it
-  }
+  for (int k = 0; k < n; ++k)
+    for (int attempt = 0; attempt < 8; ++attempt) {  // a point of the zone some beam passes through
+      const int b = std::clamp(beams_ / 2 + static_cast<int>(std::lround((2 * u_(rng_) - 1) * half)), 0, beams_ - 1);
+      const int l = static_cast<int>(u_(rng_) * cfg_.layers) % cfg_.layers;
+      const double r = cfg_.min_range + u_(rng_) * (cfg_.sea.spray_range - cfg_.min_range);
+      const double e = cfg_.layer_elevation[l], az = out.azimuth[b];
+      const double z = sensor.z() + r * (to_ned * Eigen::Vector3d(std::cos(e) * std::cos(az), std::cos(e) * std::sin(az),
+                                                                  -std::sin(e))).z();
+      if (z > 0.0 || z < -cfg_.sea.spray_height) continue;  // the beam is under the water or above the spray there
+      float& range = out.ranges[static_cast<std::size_t>(l) * beams_ + b];
+      if (!(range <= r)) range = static_cast<float>(r);  // a droplet nearer than what the beam saw hides it
+      break;
+    }
 }
 
 // ---------------------------------------------------------------- imaging sonar
