@@ -429,9 +429,12 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     held = bool((outcome or {}).get("held")) if outcome else bool(last_usv and last_usv.success)
     safety_stop = any(m.active_rule in m.active_rules and m.active_rule != "manual" and m.action >= ACTION_HOLD
                       for _, m in u["/usv/safety/transitions"] + a["/auv/safety/transitions"])
+    final_distance = (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
+                          for tt in targets_true) if usv_track and targets_true else float("nan"))
     verdict, min_clearance = judge(scenario, u["/usv/ground_truth/odom"], {
         "held": held, "auv_no_target": bool(last_auv and last_auv.phase == "NO_TARGET"),
-        "target_error": target_error, "died": bool(died), "safety_stop": safety_stop}) if scenario else ("timeout", float("nan"))
+        "target_error": target_error, "final_distance": final_distance, "died": bool(died),
+        "safety_stop": safety_stop}) if scenario else ("timeout", float("nan"))
 
     metrics = {
         "success": verdict == "success",
@@ -440,7 +443,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         # cross-track errors while following a path: _est on the vehicle's navigation estimate (guidance's own, as
         # the thesis' Table 5.1 was measured on the USV's GPS), _true the true position's distance from the leg
         "usv_xte_est_rmse_m": us["rmse"], "usv_xte_est_sd_m": us["sd"], "usv_xte_est_mae_m": us["mae"],
-        "usv_xte_est_samples": us["n"], "usv_xte_true_rmse_m": us_true["rmse"],
+        "usv_xte_est_samples": us["n"], "usv_xte_true_rmse_m": us_true["rmse"], "usv_xte_true_samples": us_true["n"],
         "auv_xte_true_rmse_m": au["rmse"], "auv_xte_true_sd_m": au["sd"], "auv_xte_true_mae_m": au["mae"],
         "auv_xte_true_samples": au["n"],
         # the AUV's figures above count from the first waypoint reached (as Table 4.4); its approach apart
@@ -457,8 +460,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
         "min_clearance_m": min_clearance,  # the hull's (sim/contact.h), not the reference point's
         # where the USV really ended, against the true target (the stand-off is part of this distance)
-        "usv_final_distance_to_target_m": (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
-                                               for tt in targets_true) if usv_track and targets_true else float("nan")),
+        "usv_final_distance_to_target_m": final_distance,
         "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95,
         "sim_time_s": sim_time, "wall_time_s": wall_time_s,
         # the simulated run alone (from the shared clock's start), what the ROS-free runner's wall_time_s measures
