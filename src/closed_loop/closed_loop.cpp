@@ -10,9 +10,9 @@ namespace {
 sim::Scenario scenarioOf(const ClosedLoopConfig& cfg) {
   sim::Scenario sc;
   sc.name = "closed_loop";
-  sc.current.north = cfg.current.x();
-  sc.current.east = cfg.current.y();
-  sc.current.variation = 0.0;
+  sc.sea = models::seaState(cfg.sea_state);
+  sc.sea.current_north = cfg.current.x();
+  sc.sea.current_east = cfg.current.y();
   sc.usv = {cfg.start.x(), cfg.start.y(), cfg.start_yaw};
   sc.auv = {cfg.start.x(), cfg.start.y(), cfg.start.z(), cfg.start_yaw};
   sc.world.buoys = cfg.buoys;

@@ -172,7 +172,8 @@ void UsvStack::perceive(double t) {
       continue;
     }
     sim::packCloud(scan, cloud_);
-    const perception::LidarResult r = lidar_.extract(viewOf(cloud_));
+    // levelled with the sensor's IMU, as the nodelet does with its sensor_msgs/Imu (FLU: the FRD pitch negated)
+    const perception::LidarResult r = lidar_.extract(viewOf(cloud_), perception::levelling(scan.roll, -scan.pitch));
     const Eigen::Isometry3d to_world = body * sim::sensorMount(cfg_.sim.lidar.mount, cfg_.sim.lidar.mount_yaw, false);
     obstacles_.clear();
     seen_.clear();
@@ -359,7 +360,8 @@ void AuvStack::perceive() {
       beams_.pop_front();
       continue;
     }
-    sonar_.addBeam(view, body * sim::sensorMount(cfg_.sim.sonar.mount, 0.0, true));
+    const Eigen::Isometry3d head = body * sim::sensorMount(cfg_.sim.sonar.mount, 0.0, true, -cfg_.sim.sonar.tilt);
+    sonar_.addBeam(view, head, head.translation().z());  // map_ned: z is the depth
     beams_.pop_front();
     if (!sonar_.sweepReady()) continue;
     const perception::SonarSweep sweep = sonar_.takeSweep();

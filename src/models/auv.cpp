@@ -184,17 +184,22 @@ void AuvModel::step(double dt, const Environment& env) {
   const Eigen::Vector4d tau = tcm_ * f_;  // eq. 3.16
   const Eigen::Vector3d vc = env.current(t0);
   const double weight = p_.weight(), buoyancy = p_.buoyancy(env.params().water_density);  // eq. 3.21
+  // Mean wave drift only while the hull pierces the surface: a submerged body reflects (almost) nothing and a
+  // submerged circular cylinder feels no mean drift at all (Ogilvie 1963); fading out as it dives its draft deep.
+  const Hull hull = AuvModel::hull(p_);
+  drift_ = std::clamp(1.0 - lf_.position.z() / hull.draft, 0.0, 1.0) * env.driftForce(lf_.yaw, hull);
   auto deriv = [&](const Vec8& x) {
     // x = [N, E, D, psi, u, v, w, r]; (u, v, w) over ground; damping on the velocity relative to the water.
     const double c = std::cos(x(3)), s = std::sin(x(3));
     Eigen::Vector4d nu_r(x(4) - (c * vc.x() + s * vc.y()), x(5) - (-s * vc.x() + c * vc.y()), x(6) - vc.z(), x(7));
+    const Eigen::Vector4d drift(c * drift_.x() + s * drift_.y(), -s * drift_.x() + c * drift_.y(), 0.0, 0.0);
     const Eigen::Vector4d damping = d_lin_.cwiseProduct(nu_r) + d_quad_.cwiseProduct(nu_r.cwiseAbs().cwiseProduct(nu_r));
     // g(eta) = [0, 0, -(W - B), 0] on the left of eq. 3.14 is +(W - B) on the right: heavier sinks (z down).
     // Buoyancy fades as the hull leaves the water (over kEmergence) while the weight stays, so a buoyant AUV
     // floats at the surface and one pushed above it (thrust, momentum) falls back; never flies.
     const double immersed = std::clamp(1.0 + x(2) / kEmergence, 0.0, 1.0);
     Eigen::Vector4d g(0, 0, weight - immersed * buoyancy, 0);
-    const Eigen::Vector4d nu_dot = (tau - damping + g).cwiseQuotient(m_);
+    const Eigen::Vector4d nu_dot = (tau + drift - damping + g).cwiseQuotient(m_);
     Vec8 d;
     d << c * x(4) - s * x(5), s * x(4) + c * x(5), x(6), x(7), nu_dot;
     return d;
@@ -212,7 +217,7 @@ void AuvModel::step(double dt, const Environment& env) {
     lf_.angular_rate.z() = x(7);
   }
   lf_.t = t0 + dt;
-  out_ = withWave(lf_, env.wave(lf_.t, std::max(0.0, lf_.position.z())));
+  out_ = withWave(lf_, env.wave(lf_.t, lf_, hull));
 }
 
 }  // namespace models

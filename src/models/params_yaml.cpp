@@ -219,35 +219,11 @@ AuvParams auvParamsFromYaml(const std::string& text, const std::string& source) 
 
 EnvironmentParams environmentParamsFromYaml(const std::string& text, const std::string& source) {
   const YAML::Node root = parse(text, source);
-  EnvironmentParams p;
-  if (!root || root.IsNull()) return p;  // empty file: calm water
+  if (!root || root.IsNull()) return EnvironmentParams();  // empty file: calm water
   Reader r(root, source);
-  r.opt("current_north", p.current_north, -5, 5);
-  r.opt("current_east", p.current_east, -5, 5);
-  r.opt("current_variation", p.current_variation, 0, 5);
-  r.opt("current_period", p.current_period, 10, 1e6);
-  double seed = static_cast<double>(p.seed);
-  r.opt("seed", seed, 0, 9.007199254740992e15);
-  p.seed = static_cast<std::uint64_t>(seed);
-  r.opt("wind_speed", p.wind_speed, 0, 60);
-  double wind_dir_deg = rad2deg(p.wind_direction);
-  r.opt("wind_direction_deg", wind_dir_deg, -360, 360);
-  p.wind_direction = deg2rad(wind_dir_deg);
-  r.opt("wind_gust", p.wind_gust, 0, 30);
-  r.opt("air_density", p.air_density, 0.5, 2);
-  r.opt("wave_amplitude", p.wave_amplitude, 0, 10);
-  r.opt("wave_heave_amplitude", p.wave_heave_amplitude, 0, 10);
-  double yaw_deg = rad2deg(p.wave_yaw_amplitude);
-  r.opt("wave_yaw_amplitude_deg", yaw_deg, 0, 28);
-  p.wave_yaw_amplitude = deg2rad(yaw_deg);
-  r.opt("wave_frequency", p.wave_frequency, 0.1, 0.4);
-  double wave_dir_deg = rad2deg(p.wave_direction);
-  r.opt("wave_direction_deg", wave_dir_deg, -360, 360);
-  p.wave_direction = deg2rad(wave_dir_deg);
-  r.opt("water_density", p.water_density, 990, 1050);
+  for (const char* k : {"sea_state", "current", "wind", "waves", "air_density", "water_density"}) r.child(k);
   r.noUnknown();
-  validateWithSource(p, source);
-  return p;
+  return environmentFromYaml(root, source);
 }
 
 UsvParams loadUsvParams(const std::string& path) { return usvParamsFromYaml(readTextFile(path), path); }

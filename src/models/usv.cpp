@@ -173,6 +173,7 @@ void UsvModel::reset(const VehicleState& s) {
   if (twin_) twin_->reset();
   tau_.setZero();
   tau_wind_.setZero();
+  drift_.setZero();
   updateOutput(Environment());
 }
 
@@ -261,6 +262,8 @@ void UsvModel::step(double dt, const Environment& env) {
   } else {
     const Eigen::Vector2d wind = env.wind(t0);
     const double rho_a = env.params().air_density;
+    // the mean wave drift force, held over the step (it changes with the heading slowly)
+    drift_ = env.driftForce(lf_.yaw, hull(p_));
     auto deriv = [&](const Vec6& x) {
       // x = [N, E, psi, u, v, r]; u, v over ground in body axes; damping acts on the relative velocity.
       const double c = std::cos(x(2)), s = std::sin(x(2));
@@ -285,7 +288,8 @@ void UsvModel::step(double dt, const Environment& env) {
                                     std::abs(p_.Y_v) * vr + std::abs(p_.Y_vv) * std::abs(vr) * vr +
                                         std::abs(p_.Y_r) * r,
                                     std::abs(p_.Y_r) * vr + std::abs(p_.N_r) * r + std::abs(p_.N_rr) * std::abs(r) * r);
-      const Eigen::Vector3d nu_dot = m_inv_ * (tau + tw - damping);  // eq. 3.3 without C (thesis 3.2.2)
+      const Eigen::Vector3d td(c * drift_.x() + s * drift_.y(), -s * drift_.x() + c * drift_.y(), 0.0);
+      const Eigen::Vector3d nu_dot = m_inv_ * (tau + tw + td - damping);  // eq. 3.3 without C (thesis 3.2.2)
       Vec6 d;
       d << c * x(3) - s * x(4), s * x(3) + c * x(4), r, nu_dot;
       tau_ = tau;
@@ -317,7 +321,7 @@ void UsvModel::step(double dt, const Environment& env) {
   updateOutput(env);
 }
 
-void UsvModel::updateOutput(const Environment& env) { out_ = withWave(lf_, env.wave(lf_.t, 0.0)); }
+void UsvModel::updateOutput(const Environment& env) { out_ = withWave(lf_, env.wave(lf_.t, lf_, hull(p_))); }
 
 }  // namespace models
 }  // namespace offshore_gnc

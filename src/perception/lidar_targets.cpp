@@ -58,6 +58,12 @@ const ParamTable<LidarConfig>& LidarConfig::table() {
       .number("gap", &P::gap, 1e-3, 1e3, "m", "a jump between consecutive returns larger than this starts a target")
       .number("layer_merge", &P::layer_merge, 0.0, 1e3, "m", "segments of different layers closer than this are one")
       .integer("min_points", &P::min_points, 1, 1000000, "smaller clusters are dropped (spray, birds)")
+      .integer("max_beam_gap", &P::max_beam_gap, 1, 1000000,
+               "consecutive returns of a layer more beams apart start a new target (1 = adjacent beams only)")
+      .integer("min_run", &P::min_run, 1, 1000000, "a layer's run of fewer returns is dropped (isolated spray)")
+      .integer("confirm_frames", &P::confirm_frames, 1, 1000, "a target is reported once seen in this many frames in a row")
+      .number("confirm_distance", &P::confirm_distance, 0.0, 100.0, "m",
+              "a target continues one of the last frame within this distance")
       .list("hull_box", 4, -1e3, 1e3, "m", "own hull [min_x, max_x, min_y, max_y] in the cloud frame; empty = off",
             [](const P& p) { return std::vector<double>{p.hull_min_x, p.hull_max_x, p.hull_min_y, p.hull_max_y}; },
             [](P& p, const std::vector<double>& v) {
@@ -82,6 +88,11 @@ const char* toString(CloudError e) {
     case CloudError::BigEndian: return "big_endian";
   }
   return "unknown";
+}
+
+Eigen::Matrix3d levelling(double roll, double pitch) {
+  return (Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
 }
 
 LidarTargetExtractor::LidarTargetExtractor(const LidarConfig& cfg) : cfg_(cfg) { cfg_.validate(); }
@@ -153,7 +164,7 @@ bool LidarTargetExtractor::closeEnough(const Segment& a, const Segment& b) const
   return false;
 }
 
-LidarResult LidarTargetExtractor::extract(const CloudView& c) {
+LidarResult LidarTargetExtractor::extract(const CloudView& c, const Eigen::Matrix3d& level) {
   LidarResult r;
   if (!checkLayout(c, r)) return r;
   const bool organised = c.height > 1;
@@ -167,7 +178,10 @@ LidarResult LidarTargetExtractor::extract(const CloudView& c) {
 
   const bool hull = cfg_.hull_min_x < cfg_.hull_max_x && cfg_.hull_min_y < cfg_.hull_max_y;
   const double rmin2 = cfg_.min_range * cfg_.min_range, rmax2 = cfg_.max_range * cfg_.max_range;
+  const bool tilted = !level.isIdentity(1e-12);
   std::size_t bad_ring = 0, non_finite = 0, used = 0;
+  // each layer's scan position (the column of an organised cloud; the count so far in a layer of the buffer)
+  beam_.assign(nlayers, 0);
   for (std::uint32_t row = 0; row < c.height; ++row) {
     const std::uint8_t* rp = c.data + std::size_t(row) * c.row_step;
     for (std::uint32_t col = 0; col < c.width; ++col) {
@@ -179,14 +193,6 @@ LidarResult LidarTargetExtractor::extract(const CloudView& c) {
         x = read(pp + c.x.offset, c.x.datatype), y = read(pp + c.y.offset, c.y.datatype);
         z = read(pp + c.z.offset, c.z.datatype);
       }
-      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
-        ++non_finite;  // no echo: normal for LiDARs, counted only in the result
-        continue;
-      }
-      const double r2 = x * x + y * y;
-      if (r2 < rmin2 || r2 > rmax2 || z < cfg_.min_z || z > cfg_.max_z) continue;
-      if (hull && x >= cfg_.hull_min_x && x <= cfg_.hull_max_x && y >= cfg_.hull_min_y && y <= cfg_.hull_max_y)
-        continue;
       std::size_t layer = row;
       if (use_ring) {
         const double ring = read(pp + c.ring.offset, c.ring.datatype);
@@ -198,7 +204,21 @@ LidarResult LidarTargetExtractor::extract(const CloudView& c) {
       } else if (!organised) {
         layer = 0;
       }
-      layers_[layer].push_back(P{float(x), float(y), float(z)});
+      const std::uint32_t beam = beam_[layer]++;
+      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
+        ++non_finite;  // no echo: normal for LiDARs, counted only in the result
+        continue;
+      }
+      // the own hull moves with the sensor: tested before levelling
+      if (hull && x >= cfg_.hull_min_x && x <= cfg_.hull_max_x && y >= cfg_.hull_min_y && y <= cfg_.hull_max_y)
+        continue;
+      if (tilted) {
+        const Eigen::Vector3d l = level * Eigen::Vector3d(x, y, z);
+        x = l.x(), y = l.y(), z = l.z();
+      }
+      const double r2 = x * x + y * y;
+      if (r2 < rmin2 || r2 > rmax2 || z < cfg_.min_z || z > cfg_.max_z) continue;
+      layers_[layer].push_back(P{float(x), float(y), float(z), beam});
       ++used;
     }
   }
@@ -217,9 +237,11 @@ LidarResult LidarTargetExtractor::extract(const CloudView& c) {
     for (std::uint32_t i = 0; i < pts.size(); ++i) {
       if (i > 0) {
         const float dx = pts[i].x - pts[i - 1].x, dy = pts[i].y - pts[i - 1].y;
-        if (dx * dx + dy * dy > gap2) {
+        // an object returns on neighbouring beams: a run also ends where beams are skipped (a return among misses
+        // is spray or foam, not the next part of the same object)
+        if (dx * dx + dy * dy > gap2 || pts[i].beam - pts[i - 1].beam > std::uint32_t(cfg_.max_beam_gap)) {
           s.end = i;
-          segments_.push_back(s);
+          if (s.end - s.begin >= std::uint32_t(cfg_.min_run)) segments_.push_back(s);
           s = Segment{li, i, i, pts[i].x, pts[i].x, pts[i].y, pts[i].y};
         }
       }
@@ -227,7 +249,7 @@ LidarResult LidarTargetExtractor::extract(const CloudView& c) {
       s.miny = std::min(s.miny, pts[i].y); s.maxy = std::max(s.maxy, pts[i].y);
     }
     s.end = static_cast<std::uint32_t>(pts.size());
-    segments_.push_back(s);
+    if (s.end - s.begin >= std::uint32_t(cfg_.min_run)) segments_.push_back(s);
   }
   parent_.resize(segments_.size());
   std::iota(parent_.begin(), parent_.end(), 0);
@@ -236,8 +258,8 @@ LidarResult LidarTargetExtractor::extract(const CloudView& c) {
   for (std::size_t i = 0; i < segments_.size();) {
     std::size_t j = i;
     while (j + 1 < segments_.size() && segments_[j + 1].layer == segments_[i].layer) ++j;
-    if (j > i) {
-      const auto& pts = layers_[segments_[i].layer];
+    const auto& pts = layers_[segments_[i].layer];
+    if (j > i && segments_[i].begin == 0 && segments_[j].end == pts.size()) {
       const float dx = pts.front().x - pts.back().x, dy = pts.front().y - pts.back().y;
       if (dx * dx + dy * dy <= gap2) parent_[find(j)] = find(i);
     }
@@ -273,11 +295,36 @@ LidarResult LidarTargetExtractor::extract(const CloudView& c) {
     const auto& pts = layers_[segments_[i].layer];
     for (std::uint32_t k = segments_[i].begin; k < segments_[i].end; ++k) out.emplace_back(pts[k].x, pts[k].y, pts[k].z);
   }
+  std::vector<TargetGeometry> raw;
+  now_.clear();
   for (std::size_t k = 0; k < nclusters; ++k) {
-    if (cluster_points_[k].size() < static_cast<std::size_t>(cfg_.min_points)) continue;
-    r.targets.push_back(describeTarget(cluster_points_[k], Eigen::Vector3d::Zero()));
+    const auto& pts = cluster_points_[k];
+    if (pts.size() < static_cast<std::size_t>(cfg_.min_points)) continue;
+    raw.push_back(describeTarget(pts, Eigen::Vector3d::Zero()));
+    Seen box{float(pts[0].x()), float(pts[0].x()), float(pts[0].y()), float(pts[0].y()), 1};
+    for (const auto& p : pts) {
+      box.minx = std::min(box.minx, float(p.x())), box.maxx = std::max(box.maxx, float(p.x()));
+      box.miny = std::min(box.miny, float(p.y())), box.maxy = std::max(box.maxy, float(p.y()));
+    }
+    now_.push_back(box);
   }
+  confirm(raw, seen_, r);
+  seen_.swap(now_);
   return r;
+}
+
+// Continues each target's streak from the last frame's target whose box lies within confirm_distance of its own
+// (the sensor moves little in 80 ms: a metre covers 1.5 m/s and a turn at 30 m), and keeps those seen long enough.
+void LidarTargetExtractor::confirm(std::vector<TargetGeometry>& raw, const std::vector<Seen>& last, LidarResult& r) {
+  const float d = static_cast<float>(cfg_.confirm_distance);
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    Seen& b = now_[i];
+    for (const Seen& p : last)
+      if (b.minx <= p.maxx + d && p.minx <= b.maxx + d && b.miny <= p.maxy + d && p.miny <= b.maxy + d)
+        b.streak = std::max(b.streak, std::min(p.streak + 1, cfg_.confirm_frames));
+    if (b.streak >= cfg_.confirm_frames) r.targets.push_back(std::move(raw[i]));
+    else ++r.unconfirmed;
+  }
 }
 
 }  // namespace perception

@@ -1,14 +1,24 @@
 // LidarTargets: PointCloud2 (usv/lidar) -> TargetArray in map_ned (/usv/obstacles) + markers. Thin wrapper
-// over perception::LidarTargetExtractor; reads the cloud's buffer in place (zero-copy in a manager).
+// over perception::LidarTargetExtractor; reads the cloud's buffer in place (zero-copy in a manager). Each cloud is
+// levelled with the sensor's roll and pitch from its IMU (`lidar/imu`, sensor_msgs/Imu: the MRS1000's built-in
+// IMU) nearest its stamp; without one (none within ~imu_timeout) the cloud is taken as level and counted. The
+// targets are then placed with the TF of the cloud's frame, whose base_link pose has no roll or pitch (the USV's
+// navigation is a GPS-compass): the levelled points are what it expects.
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <tf2/LinearMath/Matrix3x3.h>
+#include <tf2/LinearMath/Quaternion.h>
 #include <tf2_ros/transform_listener.h>
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <deque>
 #include <memory>
+#include <mutex>
 
 #include "offshore_gnc/TargetArray.h"
 #include "offshore_gnc/ros/params.h"
@@ -30,6 +40,8 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
       ros_util::readParams(p, perception::SensorFrameParams::table(), f);
       target_frame_ = f.target_frame;
       tf_timeout_ = f.tf_timeout;
+      imu_topic_ = p.text("imu_topic", "lidar/imu");  // empty: clouds taken as level
+      imu_timeout_ = p.number("imu_timeout", 0.2, 0.0, 10.0);
       extractor_ = std::make_unique<perception::LidarTargetExtractor>(cfg);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
@@ -40,6 +52,7 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
     targets_pub_ = nh.advertise<offshore_gnc::TargetArray>("obstacles", 5);
     markers_.advertise(nh, "markers", "lidar_targets");
     sub_ = nh.subscribe("lidar/points", 2, &LidarTargetsNodelet::onCloud, this);
+    if (!imu_topic_.empty()) imu_sub_ = nh.subscribe(imu_topic_, 20, &LidarTargetsNodelet::onImu, this);
     diag_ = std::make_unique<perception_ros::Diagnostics>(
         nh, pnh, getName(), extractor_->counters(), [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
           s.add("frames", frames_.load());
@@ -48,6 +61,29 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
         });
     NODELET_INFO("LiDAR targets: gap %.2f m, range [%.1f, %.1f] m, z [%.1f, %.1f] m -> %s", cfg.gap, cfg.min_range,
                  cfg.max_range, cfg.min_z, cfg.max_z, target_frame_.c_str());
+  }
+
+  // Roll and pitch (REP-103) of the sensor, kept for the last second.
+  void onImu(const sensor_msgs::Imu::ConstPtr& m) {
+    if (m->orientation_covariance[0] < 0.0) return;  // no orientation in it
+    double roll, pitch, yaw;
+    tf2::Matrix3x3(tf2::Quaternion(m->orientation.x, m->orientation.y, m->orientation.z, m->orientation.w))
+        .getRPY(roll, pitch, yaw);
+    std::lock_guard<std::mutex> l(imu_mutex_);
+    attitude_.push_back({m->header.stamp.toSec(), roll, pitch});
+    while (attitude_.size() > 1 && attitude_.back().t - attitude_.front().t > 1.0) attitude_.pop_front();
+  }
+  // The levelling rotation of the attitude nearest `t`; identity (and counted) when none is within imu_timeout.
+  Eigen::Matrix3d levelAt(double t) {
+    std::lock_guard<std::mutex> l(imu_mutex_);
+    const Attitude* best = nullptr;
+    for (const auto& a : attitude_)
+      if (!best || std::abs(a.t - t) < std::abs(best->t - t)) best = &a;
+    if (!imu_topic_.empty() && (!best || std::abs(best->t - t) > imu_timeout_)) {
+      extractor_->counters().increment("no_attitude");
+      return Eigen::Matrix3d::Identity();
+    }
+    return best ? perception::levelling(best->roll, best->pitch) : Eigen::Matrix3d::Identity();
   }
 
   void onCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
@@ -62,7 +98,8 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
                             msg->header.frame_id.c_str(), msg->header.stamp.toSec(), err.c_str());
       return;
     }
-    const perception::LidarResult r = extractor_->extract(perception_ros::cloudView(*msg));
+    const perception::LidarResult r =
+        extractor_->extract(perception_ros::cloudView(*msg), levelAt(msg->header.stamp.toSec()));
     if (r.error != perception::CloudError::None) {
       NODELET_ERROR_THROTTLE(5.0, "rejected cloud (%s): %s", perception::toString(r.error), r.message.c_str());
       return;
@@ -82,8 +119,14 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
 
-  std::string target_frame_;
-  double tf_timeout_ = 0.1;
+  struct Attitude {
+    double t, roll, pitch;
+  };
+  std::string target_frame_, imu_topic_;
+  double tf_timeout_ = 0.1, imu_timeout_ = 0.2;
+  std::mutex imu_mutex_;
+  std::deque<Attitude> attitude_;
+  ros::Subscriber imu_sub_;
   std::unique_ptr<perception::LidarTargetExtractor> extractor_;
   std::unique_ptr<tf2_ros::Buffer> tf_;
   std::unique_ptr<tf2_ros::TransformListener> listener_;

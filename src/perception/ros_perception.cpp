@@ -107,7 +107,10 @@ BeamFed feedBeam(perception::SonarTargetExtractor& ex, const offshore_gnc::Sonar
                       target_frame.c_str(), msg.header.frame_id.c_str(), msg.header.stamp.toSec(), err.c_str());
     return BeamFed::NoPose;
   }
-  ex.addBeam(beam, pose);
+  // the head's depth for the surface gate: the world frames' origin lies on the water surface (z down in map_ned,
+  // up in map)
+  const double z = pose.translation().z();
+  ex.addBeam(beam, pose, target_frame == "map" ? -z : z);
   return BeamFed::Added;
 }
 
@@ -167,6 +170,7 @@ void SonarFeed::readParams(const ros_util::ParamReader& p) {
   ros_util::readParams(p, perception::SensorFrameParams::table(), f);
   target_frame = f.target_frame;
   tf_timeout = f.tf_timeout;
+  extractor->setWorldZUp(target_frame == "map");
 }
 
 void SonarFeed::connect(ros::NodeHandle& nh) {

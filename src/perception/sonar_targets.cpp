@@ -1,5 +1,6 @@
 #include "offshore_gnc/perception/sonar_targets.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -19,7 +20,17 @@ const ParamTable<SonarConfig>& SonarConfig::table() {
                "a larger bearing step between detections starts a new target")
       .number("max_range_jump", &P::max_range_jump, 1e-3, 1e3, "m",
               "a larger range step between consecutive beams starts a new target")
-      .integer("min_beams", &P::min_beams, 1, 10000, "targets seen in fewer beams are dropped (speckle)");
+      .integer("min_beams", &P::min_beams, 1, 10000, "targets seen in fewer beams are dropped (speckle)")
+      .number("min_width", &P::min_width, 0.0, 100.0, "m",
+              "narrower targets, the beam's width taken off, are point scatterers (mooring lines, fish): dropped")
+      .number("cfar_factor", &P::cfar_factor, 0.0, 100.0, "",
+              "a bin must reach this times the quieter side's training mean (CFAR; 0 = off)")
+      .number("cfar_window", &P::cfar_window, 0.01, 100.0, "m", "CFAR training cells on each side")
+      .number("cfar_guard", &P::cfar_guard, 0.0, 100.0, "m", "CFAR guard cells between a bin and its training cells")
+      .degrees("vertical_beam_deg", &P::vertical_beam, 0.0, 90.0,
+               "the sonar's vertical beam width (0 = no surface gate)")
+      .number("surface_clearance", &P::surface_clearance, 0.0, 100.0, "m",
+              "surface gate: the deepest hull draft (and wave trough) under the surface");
   return t;
 }
 
@@ -27,19 +38,42 @@ void SonarConfig::validate() const { table().validate(*this); }
 
 SonarTargetExtractor::SonarTargetExtractor(const SonarConfig& cfg) : cfg_(cfg) { cfg_.validate(); }
 
-bool SonarTargetExtractor::detect(const SonarBeamView& b, double& range, std::uint8_t& intensity) const {
+double SonarTargetExtractor::surfaceGate(double depth, double elevation) const {
+  const double upper = elevation + 0.5 * cfg_.vertical_beam;
+  if (cfg_.vertical_beam <= 0.0 || !std::isfinite(depth) || !(upper > 0.0)) return std::numeric_limits<double>::infinity();
+  return std::max(0.0, depth - cfg_.surface_clearance) / std::sin(std::min(upper, kPi / 2));
+}
+
+bool SonarTargetExtractor::detect(const SonarBeamView& b, double& range, std::uint8_t& intensity,
+                                  double gate) const {
+  // CFAR training means from running sums: bins [i - guard - window, i - guard) and (i + guard, i + guard + window]
+  const auto n = static_cast<long>(b.num_bins);
+  const long guard = std::lround(cfg_.cfar_guard / b.range_resolution);
+  const long window = std::max(1L, std::lround(cfg_.cfar_window / b.range_resolution));
+  cumulative_.assign(b.num_bins + 1, 0.0);
+  for (long i = 0; i < n; ++i) cumulative_[i + 1] = cumulative_[i] + b.bins[i];
+  auto mean = [&](long lo, long hi) {  // of bins [lo, hi), clipped; NaN when empty
+    lo = std::max(0L, lo), hi = std::min(n, hi);
+    return hi > lo ? (cumulative_[hi] - cumulative_[lo]) / double(hi - lo) : std::numeric_limits<double>::quiet_NaN();
+  };
   int best = -1;
-  std::size_t best_i = 0;
-  for (std::size_t i = 0; i < b.num_bins; ++i) {
+  long best_i = 0;
+  for (long i = 0; i < n; ++i) {
     const double r = b.range_offset + b.range_resolution * static_cast<double>(i);
     if (r < cfg_.min_range) continue;
-    if (cfg_.max_range > 0.0 && r > cfg_.max_range) break;
-    if (b.bins[i] > best) {
-      best = b.bins[i];
-      best_i = i;
+    if ((cfg_.max_range > 0.0 && r > cfg_.max_range) || r > gate) break;
+    if (b.bins[i] <= best || b.bins[i] < cfg_.threshold) continue;
+    if (cfg_.cfar_factor > 0.0) {
+      const double lead = mean(i - guard - window, i - guard), trail = mean(i + guard + 1, i + guard + window + 1);
+      // the louder side: reverberation rises with range where the surface or the bottom enters the beam, and a
+      // bin on that rise must stand out of what follows it too (greatest-of CFAR)
+      const double background = std::isnan(lead) ? trail : (std::isnan(trail) ? lead : std::max(lead, trail));
+      if (!std::isnan(background) && b.bins[i] < cfg_.cfar_factor * background) continue;
     }
+    best = b.bins[i];
+    best_i = i;
   }
-  if (best < cfg_.threshold) return false;
+  if (best < 0) return false;
   range = b.range_offset + b.range_resolution * static_cast<double>(best_i);
   intensity = static_cast<std::uint8_t>(best);
   return true;
@@ -67,7 +101,8 @@ bool SonarTargetExtractor::check(const SonarBeamView& b) {
   return true;
 }
 
-SonarTargetExtractor::BeamStatus SonarTargetExtractor::addBeam(const SonarBeamView& b, const Eigen::Isometry3d& pose) {
+SonarTargetExtractor::BeamStatus SonarTargetExtractor::addBeam(const SonarBeamView& b, const Eigen::Isometry3d& pose,
+                                                               double head_depth) {
   if (!check(b)) return BeamStatus::Rejected;
   if (!pose.matrix().allFinite()) {
     counters_.increment("bad_pose");
@@ -100,12 +135,15 @@ SonarTargetExtractor::BeamStatus SonarTargetExtractor::addBeam(const SonarBeamVi
   ++current_.beams;
 
   SonarDetection d;
-  if (!detect(b, d.range, d.intensity)) {
+  const Eigen::Vector3d axis = pose.linear() * Eigen::Vector3d(std::cos(b.bearing), std::sin(b.bearing), 0.0);
+  const double elevation = std::asin(std::clamp(z_up_ ? axis.z() : -axis.z(), -1.0, 1.0));
+  if (!detect(b, d.range, d.intensity, surfaceGate(head_depth, elevation))) {
     closeRun(false);
     return BeamStatus::NoDetection;
   }
   d.stamp = b.stamp;
   d.bearing = b.bearing;
+  d.beam_width = b.beam_width;
   // Sonar head frame: x forward, y starboard, z down; bearing clockwise from x.
   d.sensor = pose.translation();
   d.point = pose * Eigen::Vector3d(d.range * std::cos(b.bearing), d.range * std::sin(b.bearing), 0.0);
@@ -147,6 +185,20 @@ SonarTarget SonarTargetExtractor::makeTarget(const std::vector<SonarDetection>& 
   return t;
 }
 
+double SonarTargetExtractor::width(const std::vector<SonarDetection>& d) {
+  // world bearings from the sensor, relative to the first (the sweep is under 2 pi): their span is what the beam
+  // swept over the object, which for a point is the beam's width (plus up to one step either side)
+  const auto bearing = [](const SonarDetection& x) { return std::atan2(x.point.y() - x.sensor.y(), x.point.x() - x.sensor.x()); };
+  const double b0 = bearing(d.front());
+  double lo = 0.0, hi = 0.0, range = d.front().range;
+  for (const auto& x : d) {
+    const double a = angleDiff(bearing(x), b0);
+    lo = std::min(lo, a), hi = std::max(hi, a);
+    range = std::min(range, x.range);
+  }
+  return range * std::max(0.0, hi - lo - d.front().beam_width);
+}
+
 void SonarTargetExtractor::finishSweep(bool full_turn) {
   closeRun(true);
   current_.full_turn = full_turn;
@@ -157,8 +209,14 @@ void SonarTargetExtractor::finishSweep(bool full_turn) {
     last.insert(last.end(), runs_.front().d.begin(), runs_.front().d.end());
     runs_.erase(runs_.begin());
   }
-  for (const auto& r : runs_)
-    if (static_cast<int>(r.d.size()) >= cfg_.min_beams) current_.targets.push_back(makeTarget(r.d));
+  for (const auto& r : runs_) {
+    if (static_cast<int>(r.d.size()) < cfg_.min_beams) continue;
+    if (width(r.d) < cfg_.min_width) {
+      counters_.increment("point_scatterers");
+      continue;
+    }
+    current_.targets.push_back(makeTarget(r.d));
+  }
   runs_.clear();
   done_ = std::move(current_);
   current_ = SonarSweep{};

@@ -47,6 +47,8 @@ class AuvSimNodelet : public nodelet::Nodelet {
       cfg.sonar.bins = p.integer("sonar/bins", cfg.sonar.bins, 8, 1500);
       const auto sm = p.numbers("sonar/mount", {0.6, 0.0, -0.2}, 3, -10, 10);
       cfg.sonar.mount = {sm[0], sm[1], sm[2]};
+      cfg.sonar.tilt = deg2rad(p.number("sonar/tilt_deg", rad2deg(cfg.sonar.tilt), -90, 90));
+      ros_util::readParams(p, sim::SonarWaterConfig::table(), cfg.sonar.water, "sonar/");
       cfg.depth.rate_hz = p.number("depth/rate", cfg.depth.rate_hz, 0.1, 100);
       cfg.depth.water_density = p.number("depth/water_density", cfg.depth.water_density, 900, 1100);
       cfg.ahrs.rate_hz = p.number("ahrs/rate", cfg.ahrs.rate_hz, 0.1, 100);
@@ -78,7 +80,7 @@ class AuvSimNodelet : public nodelet::Nodelet {
     sonar_pub_ = nh.advertise<SonarBeam>("/auv/sonar/beam", 50);
     setpoint_sub_ = nh.subscribe("/auv/thruster_setpoints", 10, &AuvSimNodelet::onSetpoints, this);
     rc_sub_ = nh.subscribe("/auv/rc_channels", 10, &AuvSimNodelet::onRc, this);
-    static_tf_.sendTransform(ros_util::mountTransform(base_frame_, "auv/sonar", sim::sensorMount(cfg.sonar.mount, 0.0, true)));
+    static_tf_.sendTransform(ros_util::mountTransform(base_frame_, "auv/sonar", sim::sensorMount(cfg.sonar.mount, 0.0, true, -cfg.sonar.tilt)));
 
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("auv_simulator");

@@ -83,8 +83,8 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
     throw ConfigError("scenario '" + source + "': not valid YAML: " + e.what());
   }
   if (!root || !root.IsMap()) throw ConfigError("scenario '" + source + "': must be a YAML mapping");
-  r.keys(root, "", {"name", "origin", "current", "usv", "auv", "obstacles", "targets", "walls", "map", "wind",
-                   "waves", "mission"});
+  r.keys(root, "", {"name", "origin", "sea_state", "current", "wind", "waves", "air_density", "water_density",
+                   "bottom", "usv", "auv", "obstacles", "targets", "walls", "map", "mission"});
   Scenario s;
   s.name = r.text(root, "", "name");
 
@@ -95,27 +95,14 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
   s.origin.lon_deg = r.number(o, "origin", "longitude", -180.0, 180.0);
   s.origin.alt_m = r.opt(o, "origin", "altitude", 0.0, -500.0, 9000.0);
 
-  if (const YAML::Node c = root["current"]) {
-    r.keys(c, "current", {"north", "east", "variation", "seed"});
-    s.current.north = r.opt(c, "current", "north", 0.0, -5.0, 5.0);
-    s.current.east = r.opt(c, "current", "east", 0.0, -5.0, 5.0);
-    s.current.variation = r.opt(c, "current", "variation", 0.0, 0.0, 2.0);
-    s.current.seed = static_cast<std::uint64_t>(r.opt(c, "current", "seed", 1.0, 0.0, 4294967295.0));
+  try {  // the models' own reader: the same names, ranges and presets as an environment file
+    s.sea = models::environmentFromYaml(root, "scenario '" + source + "'");
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("scenario '" + source + "': sea state: " + e.what());
   }
-
-  if (const YAML::Node w = root["wind"]) {
-    r.keys(w, "wind", {"speed", "direction_deg", "gust"});
-    s.wind.speed = r.opt(w, "wind", "speed", 0.0, 0.0, 40.0);
-    s.wind.direction = deg2rad(r.opt(w, "wind", "direction_deg", 0.0, -360.0, 360.0));
-    s.wind.gust = r.opt(w, "wind", "gust", 0.0, 0.0, 20.0);
-  }
-  if (const YAML::Node w = root["waves"]) {
-    r.keys(w, "waves", {"amplitude", "heave_amplitude", "yaw_amplitude_deg", "frequency", "direction_deg"});
-    s.waves.amplitude = r.opt(w, "waves", "amplitude", 0.0, 0.0, 5.0);
-    s.waves.heave_amplitude = r.opt(w, "waves", "heave_amplitude", 0.0, 0.0, 5.0);
-    s.waves.yaw_amplitude = deg2rad(r.opt(w, "waves", "yaw_amplitude_deg", 0.0, 0.0, 30.0));
-    s.waves.frequency = r.opt(w, "waves", "frequency", 0.3, 0.1, 0.4);  // the band the notch filters target
-    s.waves.direction = deg2rad(r.opt(w, "waves", "direction_deg", 0.0, -360.0, 360.0));
+  if (const YAML::Node b = root["bottom"]) {
+    r.keys(b, "bottom", {"depth"});
+    s.world.bottom_depth = r.number(b, "bottom", "depth", 0.5, 11000.0);
   }
 
   const YAML::Node u = root["usv"];
@@ -134,7 +121,9 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
   r.keys(a["start"], "auv.start", {"north", "east", "depth", "yaw_deg"});
   s.auv.north = r.number(a["start"], "auv.start", "north", -kMaxCoord, kMaxCoord);
   s.auv.east = r.number(a["start"], "auv.start", "east", -kMaxCoord, kMaxCoord);
-  s.auv.depth = r.number(a["start"], "auv.start", "depth", 0.0, 1000.0);
+  // above the bottom, when there is one
+  const double floor = s.world.bottom_depth > 0.0 ? s.world.bottom_depth : 1000.0;
+  s.auv.depth = r.number(a["start"], "auv.start", "depth", 0.0, floor);
   s.auv.yaw = deg2rad(r.opt(a["start"], "auv.start", "yaw_deg", 0.0, -360.0, 360.0));
   if (const YAML::Node cov = a["coverage"]) {  // read by the AUV mission; checked here so typos surface early
     r.keys(cov, "auv.coverage", {"north_min", "north_max", "east_min", "east_max", "depth", "spacing"});
@@ -142,7 +131,7 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
     r.number(cov, "auv.coverage", "north_max", n0 + 1e-3, kMaxCoord);
     const double e0 = r.number(cov, "auv.coverage", "east_min", -kMaxCoord, kMaxCoord);
     r.number(cov, "auv.coverage", "east_max", e0 + 1e-3, kMaxCoord);
-    r.number(cov, "auv.coverage", "depth", 0.0, 1000.0);
+    r.number(cov, "auv.coverage", "depth", 0.0, floor);
     r.opt(cov, "auv.coverage", "spacing", 5.0, 0.5, 1000.0);
   }
 
@@ -154,15 +143,19 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
       const Eigen::Vector2d c(r.number(obs[i], p, "north", -kMaxCoord, kMaxCoord),
                               r.number(obs[i], p, "east", -kMaxCoord, kMaxCoord));
       if (type == "buoy") {
-        r.keys(obs[i], p, {"type", "north", "east", "radius", "height"});
-        s.world.buoys.push_back({c, r.number(obs[i], p, "radius", 0.05, 50.0), r.opt(obs[i], p, "height", 1.0, 0.05, 50.0)});
+        r.keys(obs[i], p, {"type", "north", "east", "radius", "height", "draft"});
+        const Buoy def;
+        s.world.buoys.push_back({c, r.number(obs[i], p, "radius", 0.05, 50.0),
+                                 r.opt(obs[i], p, "height", def.height, 0.05, 50.0),
+                                 r.opt(obs[i], p, "draft", def.draft, 0.0, 50.0)});
       } else if (type == "vessel") {
-        r.keys(obs[i], p, {"type", "north", "east", "length", "width", "height", "yaw_deg"});
+        r.keys(obs[i], p, {"type", "north", "east", "length", "width", "height", "draft", "yaw_deg"});
         Vessel v;
         v.centre = c;
         v.length = r.number(obs[i], p, "length", 0.5, 400.0);
         v.width = r.number(obs[i], p, "width", 0.2, 100.0);
         v.height = r.opt(obs[i], p, "height", 2.0, 0.1, 60.0);
+        v.draft = r.opt(obs[i], p, "draft", v.draft, 0.0, 30.0);
         v.yaw = deg2rad(r.opt(obs[i], p, "yaw_deg", 0.0, -360.0, 360.0));
         s.world.vessels.push_back(v);
       } else {
@@ -179,6 +172,8 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
       t.radius = r.number(tg[i], p, "radius", 0.05, 20.0);
       t.position = {r.number(tg[i], p, "north", -kMaxCoord, kMaxCoord), r.number(tg[i], p, "east", -kMaxCoord, kMaxCoord),
                     r.number(tg[i], p, "depth", t.radius, 1000.0)};  // a target sticking out of the water is impossible
+      if (s.world.bottom_depth > 0.0 && t.position.z() + t.radius > s.world.bottom_depth + 1e-9)
+        r.fail(p + ".depth", "puts it below the bottom (bottom.depth " + std::to_string(s.world.bottom_depth) + " m)");
       s.world.targets.push_back(t);
     }
   }

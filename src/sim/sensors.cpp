@@ -83,8 +83,9 @@ Eigen::Vector3d LidarScan::pointFrd(int layer, int beam) const {
   return {r * std::cos(e) * std::cos(a), r * std::cos(e) * std::sin(a), -r * std::sin(e)};
 }
 
-Eigen::Isometry3d sensorMount(const Eigen::Vector3d& mount_frd, double yaw_frd, bool frd_sensor) {
-  Eigen::Isometry3d t = Eigen::Translation3d(mount_frd) * Eigen::AngleAxisd(yaw_frd, Eigen::Vector3d::UnitZ());
+Eigen::Isometry3d sensorMount(const Eigen::Vector3d& mount_frd, double yaw_frd, bool frd_sensor, double pitch_frd) {
+  Eigen::Isometry3d t = Eigen::Translation3d(mount_frd) * Eigen::AngleAxisd(yaw_frd, Eigen::Vector3d::UnitZ()) *
+                        Eigen::AngleAxisd(pitch_frd, Eigen::Vector3d::UnitY());
   if (!frd_sensor) t = t * Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX());  // FLU sensor axes
   return t;
 }
@@ -104,7 +105,23 @@ void packCloud(const LidarScan& scan, PackedCloud& out) {
     }
 }
 
-Lidar::Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed) : cfg_(cfg), world_(world), rng_(seed) {
+const ParamTable<LidarSeaConfig>& LidarSeaConfig::table() {
+  using P = LidarSeaConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("foam_patch", &P::foam_patch, 0.05, 100.0, "m", "size of a whitecap (its returns are one patch)")
+      .number("foam_life", &P::foam_life, 0.1, 600.0, "s", "how long a whitecap stays white")
+      .number("spray_rate", &P::spray_rate, 0.0, 1000.0, "",
+              "spray returns per frame for one unit of sea (Hs / 1 m + (speed / 4 m/s)^2)")
+      .number("spray_range", &P::spray_range, 0.0, 50.0, "m", "the spray zone's reach from the sensor")
+      .degrees("spray_sector_deg", &P::spray_sector, 0.0, 360.0, "the spray zone's width, centred ahead")
+      .number("spray_height", &P::spray_height, 0.0, 10.0, "m", "the spray zone's height above the water")
+      .number("dropout", &P::dropout, 0.0, 1.0, "", "probability that a return is lost")
+      .degrees("imu_sigma_deg", &P::imu_sigma, 0.0, 10.0, "roll and pitch noise of the built-in IMU");
+  return t;
+}
+
+Lidar::Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed, const models::Environment* env)
+    : cfg_(cfg), world_(world), env_(env), rng_(seed) {
   requireRate("lidar/rate", cfg.rate_hz);
   requireRange("lidar/layers", cfg.layers, 1, 64);
   if (static_cast<int>(cfg.layer_elevation.size()) != cfg.layers)
@@ -115,6 +132,7 @@ Lidar::Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed) : c
   requireRange("lidar/min_range", cfg.min_range, 0, 1e3);
   requireRange("lidar/max_range", cfg.max_range, cfg.min_range + 1e-3, 1e4);
   requireRange("lidar/range_sigma", cfg.range_sigma, 0, 10);
+  LidarSeaConfig::table().validate(cfg.sea, "lidar/");
   beams_ = static_cast<int>(std::floor(cfg.aperture / cfg.step + 1e-9)) + 1;
 }
 
@@ -125,44 +143,110 @@ void Lidar::scan(const VehicleState& s, LidarScan& out) {
   out.ranges.assign(static_cast<std::size_t>(cfg_.layers) * beams_, std::numeric_limits<float>::quiet_NaN());
   out.azimuth.resize(beams_);
   out.elevation = cfg_.layer_elevation;
-  const Eigen::Vector2d off = rotate2(s.yaw, cfg_.mount);
-  const Eigen::Vector2d o(s.position.x() + off.x(), s.position.y() + off.y());
-  const double zs = s.position.z() + cfg_.mount.z();
+  // The sensor's pose: the hull's roll, pitch and heave (its wave-frequency motion) move it and tilt its layers.
+  const Eigen::Matrix3d to_ned = bodyToNed(s) * Eigen::AngleAxisd(cfg_.mount_yaw, Eigen::Vector3d::UnitZ());
+  const Eigen::Vector3d sensor = s.position + bodyToNed(s) * cfg_.mount;
+  const Eigen::Vector2d o = sensor.head<2>();
+  const double zs = sensor.z();  // NED: negative above the mean water level
   // broad phase once per frame: only shapes within range of the sensor are tested per beam
   scene_.build(world_, o, cfg_.max_range);
-  std::vector<double> tan_e(cfg_.layers), cos_e(cfg_.layers);
+  std::vector<double> sin_e(cfg_.layers), cos_e(cfg_.layers);
   for (int l = 0; l < cfg_.layers; ++l) {
-    tan_e[l] = std::tan(cfg_.layer_elevation[l]);
+    sin_e[l] = std::sin(cfg_.layer_elevation[l]);
     cos_e[l] = std::cos(cfg_.layer_elevation[l]);
   }
+  const bool waves = env_ && env_->significantHeight() > 0.0;
   for (int b = 0; b < beams_; ++b) {
     const double az = -cfg_.aperture / 2 + b * cfg_.step;
     out.azimuth[b] = az;
-    const double h = s.yaw + cfg_.mount_yaw + az;
-    const Eigen::Vector2d d(std::cos(h), std::sin(h));
+    // One 2-D cast per azimuth, along the level beam's horizontal direction; each layer then has its own slope
+    // (tilted by roll and pitch). A tilted layer's horizontal direction differs from it by under 0.5 deg.
+    const Eigen::Vector3d level = to_ned * Eigen::Vector3d(std::cos(az), std::sin(az), 0.0);
+    if (level.head<2>().norm() < 1e-6) continue;
+    const Eigen::Vector2d d = level.head<2>().normalized();
     hits_.clear();
     scene_.cast(o, d, cfg_.max_range, hits_);
-    if (hits_.empty()) continue;
     std::sort(hits_.begin(), hits_.end(), [](const Hit2d& a, const Hit2d& c) { return a.distance < c.distance; });
     for (int l = 0; l < cfg_.layers; ++l) {
-      // a beam aimed below the horizon ends on the water, which returns nothing (specular lake surface)
-      const double t_water = (tan_e[l] < 0 && zs < 0) ? zs / tan_e[l] : std::numeric_limits<double>::infinity();
-      for (const auto& hit : hits_) {
-        if (hit.distance > t_water) break;
-        const double z = zs - hit.distance * tan_e[l];
-        if (z < hit.top || z > hit.bottom) continue;  // passes over (or under) this object
-        const double r = hit.distance / cos_e[l] + cfg_.range_sigma * n_(rng_);
-        if (r >= cfg_.min_range && r <= cfg_.max_range)
-          out.ranges[static_cast<std::size_t>(l) * beams_ + b] = static_cast<float>(r);
+      const Eigen::Vector3d dir = to_ned * Eigen::Vector3d(cos_e[l] * std::cos(az), cos_e[l] * std::sin(az), -sin_e[l]);
+      const double horizontal = dir.head<2>().norm();
+      if (horizontal < 1e-6) continue;
+      const double slope = dir.z() / horizontal;  // down per metre across
+      // where a beam aimed below the horizon meets the water (on the waves' surface there, one iteration)
+      double t_water = std::numeric_limits<double>::infinity();
+      if (slope > 0 && zs < 0) {
+        t_water = -zs / slope;
+        if (waves) t_water = std::max(0.0, (-env_->elevation(s.t, o + t_water * d) - zs) / slope);
+      }
+      float& range = out.ranges[static_cast<std::size_t>(l) * beams_ + b];
+      auto returns = [&](double t) {
+        const double r = t / horizontal + cfg_.range_sigma * n_(rng_);
+        if (r >= cfg_.min_range && r <= cfg_.max_range && u_(rng_) >= cfg_.sea.dropout) range = static_cast<float>(r);
+      };
+      bool hit = false;
+      for (const auto& h : hits_) {
+        if (h.distance > t_water) break;
+        const double z = zs + h.distance * slope;
+        if (z < h.top || z > h.bottom) continue;  // passes over (or under) this object
+        returns(h.distance);
+        hit = true;
         break;
       }
+      // A beam that ends on the water returns only from a whitecap: a calm or rippled surface reflects the beam
+      // away at these grazing angles.
+      if (!hit && env_ && t_water * horizontal <= cfg_.max_range &&
+          env_->foam(s.t, o + t_water * d, cfg_.sea.foam_patch, cfg_.sea.foam_life))
+        returns(t_water);
     }
   }
+  spray(s, sensor, to_ned, out);
+  // the built-in IMU: the sensor frame's roll and pitch
+  const double pitch = -std::asin(std::clamp(to_ned(2, 0), -1.0, 1.0)), roll = std::atan2(to_ned(2, 1), to_ned(2, 2));
+  out.roll = roll + cfg_.sea.imu_sigma * n_(rng_);
+  out.pitch = pitch + cfg_.sea.imu_sigma * n_(rng_);
+}
+
+// Spray about the bow: a Poisson number of returns per frame, growing with the sea and the boat's speed, each on a
+// random beam of the spray zone at a random range, where that beam passes through the spray's layer of air.
+void Lidar::spray(const VehicleState& s, const Eigen::Vector3d& sensor, const Eigen::Matrix3d& to_ned,
+                  LidarScan& out) {
+  const double hs = env_ ? env_->significantHeight() : 0.0, speed = s.velocity.head<2>().norm();
+  const double mean = cfg_.sea.spray_rate * (hs / 1.0 + (speed / 4.0) * (speed / 4.0));
+  if (mean <= 0.0 || cfg_.sea.spray_range <= cfg_.min_range) return;
+  std::poisson_distribution<int> count(mean);
+  const int n = count(rng_);
+  const int half = static_cast<int>(0.5 * std::min(cfg_.sea.spray_sector, cfg_.aperture) / cfg_.step);
+  for (int k = 0; k < n; ++k)
+    for (int attempt = 0; attempt < 8; ++attempt) {  // a point of the zone some beam passes through
+      const int b = std::clamp(beams_ / 2 + static_cast<int>(std::lround((2 * u_(rng_) - 1) * half)), 0, beams_ - 1);
+      const int l = static_cast<int>(u_(rng_) * cfg_.layers) % cfg_.layers;
+      const double r = cfg_.min_range + u_(rng_) * (cfg_.sea.spray_range - cfg_.min_range);
+      const double e = cfg_.layer_elevation[l], az = out.azimuth[b];
+      const double z = sensor.z() + r * (to_ned * Eigen::Vector3d(std::cos(e) * std::cos(az), std::cos(e) * std::sin(az),
+                                                                  -std::sin(e))).z();
+      if (z > 0.0 || z < -cfg_.sea.spray_height) continue;  // the beam is under the water or above the spray there
+      float& range = out.ranges[static_cast<std::size_t>(l) * beams_ + b];
+      if (!(range <= r)) range = static_cast<float>(r);  // a droplet nearer than what the beam saw hides it
+      break;
+    }
 }
 
 // ---------------------------------------------------------------- imaging sonar
-Sonar::Sonar(const SonarConfig& cfg, const World& world, std::uint64_t seed)
-    : cfg_(cfg), world_(world), angle_(-cfg.sector / 2), rng_(seed) {
+const ParamTable<SonarWaterConfig>& SonarWaterConfig::table() {
+  using P = SonarWaterConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("surface_reverb", &P::surface_reverb, 0.0, 100.0, "",
+              "surface reverberation on the beam's axis per (m/s of wind)^2 (0-255 scale)")
+      .number("bottom_reverb", &P::bottom_reverb, 0.0, 255.0, "", "bottom reverberation on the beam's axis")
+      .number("mooring_echo", &P::mooring_echo, 0.0, 255.0, "", "echo of a buoy's mooring line in the beam")
+      .number("hull_echo", &P::hull_echo, 0.0, 255.0, "", "echo of a floating hull's underside in the beam")
+      .number("clutter_density", &P::clutter_density, 0.0, 100.0, "1/m^3", "volume scatterers per m^3, new every ping")
+      .number("clutter_echo", &P::clutter_echo, 0.0, 255.0, "", "their mean intensity (exponentially distributed)");
+  return t;
+}
+
+Sonar::Sonar(const SonarConfig& cfg, const World& world, std::uint64_t seed, const models::Environment* env)
+    : cfg_(cfg), world_(world), env_(env), angle_(-cfg.sector / 2), rng_(seed) {
   requireRate("sonar/ping_rate", cfg.ping_rate_hz);
   requireRange("sonar/step", cfg.step, 1e-3, 0.5);
   requireRange("sonar/sector", cfg.sector, cfg.step, 2 * kPi);
@@ -172,11 +256,18 @@ Sonar::Sonar(const SonarConfig& cfg, const World& world, std::uint64_t seed)
   requireRange("sonar/vertical_width", cfg.vertical_width, 1e-3, kPi);
   requireRange("sonar/near_field", cfg.near_field, 0, cfg.range);
   requireRange("sonar/noise_level", cfg.noise_level, 0, 255);
+  SonarWaterConfig::table().validate(cfg.water, "sonar/");
 }
 
 int Sonar::binOfRange(double r) const {
   const double res = cfg_.range / cfg_.bins;
   return static_cast<int>(std::floor(r / res));
+}
+
+double Sonar::reverb(double level, double off, double r) const {
+  if (level <= 0.0) return 0.0;
+  const double x = off / (0.5 * cfg_.vertical_width);
+  return level * std::pow(10.0, -0.6 * x * x) * std::exp(-0.03 * r);  // -6 dB two way at the edge
 }
 
 void Sonar::ping(const VehicleState& s, SonarBeamReading& out) {
@@ -189,29 +280,63 @@ void Sonar::ping(const VehicleState& s, SonarBeamReading& out) {
   out.head_status = kHeadReady | kMotorOn | (direction_ > 0 ? kScanCw : 0) | (reversed_ ? kSectorReverse : 0);
   out.intensities.resize(cfg_.bins);
 
+  // The head's frame in NED (the vehicle's attitude, then the tilt): every echo is placed in it, so that the beam's
+  // 3 deg (across) and 35 deg (up and down) widths apply about its own axis.
+  const Eigen::Matrix3d to_ned = bodyToNed(s) * Eigen::AngleAxisd(-cfg_.tilt, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Vector3d head = s.position + bodyToNed(s) * cfg_.mount;
+  const Eigen::Vector3d axis = to_ned * Eigen::Vector3d(std::cos(angle_), std::sin(angle_), 0.0);
+  const double elevation = std::asin(std::clamp(-axis.z(), -1.0, 1.0));  // the axis' [rad, up]
+  const Eigen::Vector2d d = axis.head<2>().norm() > 1e-9 ? Eigen::Vector2d(axis.head<2>().normalized())
+                                                         : Eigen::Vector2d(std::cos(s.yaw), std::sin(s.yaw));
+  const double half_v = 0.5 * cfg_.vertical_width;
+  const SonarWaterConfig& wc = cfg_.water;
+  // the surface above the head (its waves' elevation there) and the bottom below it
+  const double above = head.z() + (env_ ? env_->elevation(s.t, head.head<2>()) : 0.0);
+  const double below = world_.bottom_depth > 0.0 ? world_.bottom_depth - head.z() : 0.0;
+  const double wind = env_ ? env_->windSpeed(s.t) : 0.0;
+  std::exponential_distribution<double> speckle(1.0);
   std::vector<double> level(cfg_.bins);
   for (int i = 0; i < cfg_.bins; ++i) {
     const double r = (i + 0.5) * res;
-    // speckle: the intensity of a Rayleigh-distributed echo amplitude is exponential
-    double v = -cfg_.noise_level * std::log(1.0 - u_(rng_));
+    // speckle: the intensity of a Rayleigh-distributed echo amplitude is exponential; reverberation's too. A
+    // boundary at range r is seen at elevation asin(height / r), off the axis by that minus the axis'.
+    double mean = cfg_.noise_level;
+    if (above > 0.0 && r > above) mean += reverb(wc.surface_reverb * wind * wind, std::asin(above / r) - elevation, r);
+    if (below > 0.0 && r > below) mean += reverb(wc.bottom_reverb, -std::asin(below / r) - elevation, r);
+    double v = mean * speckle(rng_);
     if (r < cfg_.near_field) v += 160.0 * std::exp(-r / (0.3 * cfg_.near_field)) * (0.5 + u_(rng_));
     level[i] = v;
   }
-  const Eigen::Vector2d off = rotate2(s.yaw, cfg_.mount);
-  const Eigen::Vector3d head(s.position.x() + off.x(), s.position.y() + off.y(), s.position.z() + cfg_.mount.z());
-  const double h = s.yaw + angle_;
-  const Eigen::Vector2d d(std::cos(h), std::sin(h));
-  auto echo = [&](double r, double strength, int thickness) {
+  // volume clutter: scatterers uniform in the insonified volume (beam width x vertical width x range), new each ping
+  if (wc.clutter_density > 0.0) {
+    const double volume = cfg_.beam_width * cfg_.vertical_width * std::pow(cfg_.range, 3) / 3.0;
+    std::poisson_distribution<int> count(wc.clutter_density * volume);
+    for (int k = count(rng_); k > 0; --k) {
+      const int i = binOfRange(cfg_.range * std::cbrt(u_(rng_)));
+      if (i >= 0 && i < cfg_.bins) level[i] += wc.clutter_echo * speckle(rng_);
+    }
+  }
+  auto echo = [&](double r, double strength, int thickness, bool shadow) {
     const int b0 = binOfRange(r);
     if (b0 < 0 || b0 >= cfg_.bins) return;
     for (int k = 0; k < thickness && b0 + k < cfg_.bins; ++k)
       level[b0 + k] += strength * std::exp(-0.03 * r) * (0.8 + 0.4 * u_(rng_)) / (1 + k);
     // acoustic shadow behind a strong reflector
-    for (int k = b0 + thickness; k < cfg_.bins; ++k) level[k] *= 0.3;
+    if (shadow)
+      for (int k = b0 + thickness; k < cfg_.bins; ++k) level[k] *= 0.3;
   };
+  // A point at `v` (NED, from the head) of angular half-size `half`: inside the beam's 3 deg across and its
+  // 35 deg up and down about the axis.
+  auto inBeam = [&](const Eigen::Vector3d& v, double half) {
+    const Eigen::Vector3d h = to_ned.transpose() * v;  // head frame
+    const double across = angleDiff(std::atan2(h.y(), h.x()), angle_), up = std::atan2(h.z(), std::hypot(h.x(), h.y()));
+    return std::abs(across) <= cfg_.beam_width / 2 + half && std::abs(up) <= half_v + half && h.x() > 0.0;
+  };
+  // the axis' slant range to a vertical surface `t` metres away horizontally
+  const double slant = 1.0 / std::max(1e-3, std::cos(elevation));
   double nearest_wall = cfg_.range;
   for (const auto& w : world_.walls) {
-    const double t = raySegment(head.head<2>(), d, w.a, w.b);
+    const double t = raySegment(head.head<2>(), d, w.a, w.b) * slant;
     if (t >= 0 && t < nearest_wall) nearest_wall = t;
   }
   for (const auto& tg : world_.targets) {
@@ -219,13 +344,41 @@ void Sonar::ping(const VehicleState& s, SonarBeamReading& out) {
     const double dh = v.head<2>().norm();
     const double dist = v.norm();
     if (dist - tg.radius > cfg_.range || dist - tg.radius >= nearest_wall || dh < 1e-6) continue;
-    const double off_h = std::abs(angleDiff(std::atan2(v.y(), v.x()), h));
-    const double off_v = std::abs(std::atan2(v.z(), dh));
-    const double half = std::atan2(tg.radius, dh);
-    if (off_h > cfg_.beam_width / 2 + half || off_v > cfg_.vertical_width / 2 + half) continue;
-    echo(dist - tg.radius, 230.0, std::max(2, static_cast<int>(tg.radius / res)));
+    if (!inBeam(v, std::atan2(tg.radius, dist))) continue;
+    echo(dist - tg.radius, 230.0, std::max(2, static_cast<int>(tg.radius / res)), true);
   }
-  if (nearest_wall < cfg_.range) echo(nearest_wall, 200.0, 3);
+  // Floating hulls, seen from below where their underside's edge (at their draft) is inside the beam; buoys'
+  // mooring lines, from their draft down to the bottom, where they cross the beam's fan.
+  for (const auto& b : world_.buoys) {
+    const Eigen::Vector2d v = b.centre - head.head<2>();
+    const double dh = v.norm();
+    if (dh - b.radius > cfg_.range || dh < 1e-6) continue;
+    const Eigen::Vector2d edge = v * std::max(0.0, dh - b.radius) / dh;
+    const Eigen::Vector3d under(edge.x(), edge.y(), b.draft - head.z());
+    if (under.norm() < nearest_wall && inBeam(under, std::atan2(b.radius, dh))) echo(under.norm(), wc.hull_echo, 3, true);
+    // the line's depths inside the fan at its distance, then its nearest point there
+    const double top = head.z() - dh * std::tan(std::min(elevation + half_v, 1.5));
+    const double bottom = head.z() - dh * std::tan(std::max(elevation - half_v, -1.5));
+    const double line_bottom = world_.bottom_depth > 0.0 ? world_.bottom_depth : std::numeric_limits<double>::infinity();
+    const double lo = std::max(top, b.draft), hi = std::min(bottom, line_bottom);
+    if (lo > hi) continue;
+    const Eigen::Vector3d line(v.x(), v.y(), std::clamp(head.z(), lo, hi) - head.z());
+    if (line.norm() < nearest_wall && inBeam(line, 0.0))  // thinner than the beam: only inside it
+      echo(line.norm(), wc.mooring_echo, 1, false);        // and it casts no shadow worth the name
+  }
+  for (const auto& vsl : world_.vessels) {
+    const Polygon hull = vesselFootprint(vsl);
+    double t_hull = -1.0;
+    for (std::size_t i = 0; i < hull.size(); ++i) {
+      const double t = raySegment(head.head<2>(), d, hull[i], hull[(i + 1) % hull.size()]);
+      if (t >= 0.0 && (t_hull < 0.0 || t < t_hull)) t_hull = t;
+    }
+    if (t_hull < 0.0) continue;
+    const Eigen::Vector3d under(t_hull * d.x(), t_hull * d.y(), vsl.draft - head.z());
+    if (under.norm() < nearest_wall && under.norm() < cfg_.range && inBeam(under, 0.0))
+      echo(under.norm(), wc.hull_echo, 3, true);
+  }
+  if (nearest_wall < cfg_.range) echo(nearest_wall, 200.0, 3, true);
   for (int i = 0; i < cfg_.bins; ++i) out.intensities[i] = static_cast<std::uint8_t>(std::clamp(level[i], 0.0, 255.0));
 
   // step the head: sector scan back and forth

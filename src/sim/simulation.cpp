@@ -19,22 +19,7 @@ long everySteps(const char* name, double rate_hz, double dt) {
 }
 }  // namespace
 
-models::EnvironmentParams environmentOf(const Scenario& sc) {
-  models::EnvironmentParams e;
-  e.current_north = sc.current.north;
-  e.current_east = sc.current.east;
-  e.current_variation = sc.current.variation;
-  e.seed = sc.current.seed;
-  e.wind_speed = sc.wind.speed;
-  e.wind_direction = sc.wind.direction;
-  e.wind_gust = sc.wind.gust;
-  e.wave_amplitude = sc.waves.amplitude;
-  e.wave_heave_amplitude = sc.waves.heave_amplitude;
-  e.wave_yaw_amplitude = sc.waves.yaw_amplitude;
-  e.wave_frequency = sc.waves.frequency;
-  e.wave_direction = sc.waves.direction;
-  return e;
-}
+models::EnvironmentParams environmentOf(const Scenario& sc) { return sc.sea; }
 
 Eigen::VectorXd mixToThrusters(const Eigen::MatrixXd& tcm, const AuvCommand& c) {
   const Eigen::Vector4d in(c.surge, c.sway, c.heave, c.yaw);
@@ -61,7 +46,7 @@ UsvSimulation::UsvSimulation(const Scenario& sc, const Config& cfg)
       env_(environmentOf(sc)),
       model_(cfg.usv),
       gps_(cfg.gps, geo::LocalNed(sc.origin), cfg.seed * 7919 + 1),
-      lidar_(cfg.lidar, sc.world, cfg.seed * 7919 + 2) {
+      lidar_(cfg.lidar, sc.world, cfg.seed * 7919 + 2, &env_) {
   requireRange("dt", cfg.dt, 1e-4, 0.1);
   requireRange("jet_timeout", cfg.jet_timeout, 0.0, 10.0);
   requireRange("collision/time_ahead", cfg.collision.time_ahead, 0.1, 600.0);
@@ -183,7 +168,7 @@ AuvSimulation::AuvSimulation(const Scenario& sc, const Config& cfg)
     : cfg_(cfg),
       env_(environmentOf(sc)),
       model_(cfg.auv),
-      sonar_(cfg.sonar, sc.world, cfg.seed * 7919 + 3),
+      sonar_(cfg.sonar, sc.world, cfg.seed * 7919 + 3, &env_),
       depth_(cfg.depth, cfg.seed * 7919 + 4),
       ahrs_(cfg.ahrs, cfg.seed * 7919 + 5),
       dvl_(cfg.dvl, cfg.seed * 7919 + 7),

@@ -11,11 +11,14 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/NavSatFix.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <tf2/LinearMath/Quaternion.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "offshore_gnc/CanBusState.h"
@@ -50,6 +53,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
       cfg.lidar.range_sigma = p.number("lidar/range_sigma", cfg.lidar.range_sigma, 0, 10);
       const auto lm = p.numbers("lidar/mount", {1.5, 0.0, -1.0}, 3, -50, 50);
       cfg.lidar.mount = {lm[0], lm[1], lm[2]};
+      ros_util::readParams(p, sim::LidarSeaConfig::table(), cfg.lidar.sea, "lidar/");
       cfg.gps.rate_hz = p.number("gps/rate", cfg.gps.rate_hz, 0.1, 100);
       cfg.gps.position_sigma = p.number("gps/position_sigma", cfg.gps.position_sigma, 0, 100);
       cfg.gps.position_tau = p.number("gps/position_tau", cfg.gps.position_tau, 0, 1e5);
@@ -72,6 +76,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
           nh, "usv", std::vector<std::string>{"gps", "lidar", "jet", "bus_off", "collision"});
       cfg.faults = faults_->plan();
       sim_ = std::make_unique<sim::UsvSimulation>(scenario_, cfg);
+      cfg_lidar_imu_sigma_ = cfg.lidar.sea.imu_sigma;
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -83,6 +88,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
     heading_pub_ = nh.advertise<geometry_msgs::QuaternionStamped>("/usv_heading", 10);
     vel_pub_ = nh.advertise<geometry_msgs::TwistStamped>("/usv/gps/velocity", 10);
     lidar_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/usv/lidar/points", 2);
+    lidar_imu_pub_ = nh.advertise<sensor_msgs::Imu>("/usv/lidar/imu", 10);
     map_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("/usv/map", 1, true);
     jet_pub_ = nh.advertise<WaterjetStatus>("/usv/waterjet/status", 10);
     if (jet_command_topic_.empty()) {  // the gateway's reports; with the CAN chain in the loop the gateway's own
@@ -209,7 +215,20 @@ class UsvSimNodelet : public nodelet::Nodelet {
       b.state_name = g.bus_off ? "bus_off" : "error_active";
       bus_pub_.publish(b);
     }
-    if (out.lidar && lidar_pub_.getNumSubscribers() > 0) lidar_pub_.publish(cloudMessage(sim_->scan(), stamp));
+    if (out.lidar && lidar_pub_.getNumSubscribers() > 0) {
+      // the MRS1000's built-in IMU: the sensor's attitude with each frame (REP-103 FLU: the FRD pitch negated)
+      sensor_msgs::Imu imu;
+      imu.header.stamp = stamp;
+      imu.header.frame_id = "usv/lidar";
+      tf2::Quaternion q;
+      q.setRPY(sim_->scan().roll, -sim_->scan().pitch, 0.0);  // the heading is not the IMU's to give
+      imu.orientation.x = q.x(), imu.orientation.y = q.y(), imu.orientation.z = q.z(), imu.orientation.w = q.w();
+      const double var = std::pow(cfg_lidar_imu_sigma_, 2);
+      imu.orientation_covariance = {var, 0, 0, 0, var, 0, 0, 0, -1};  // no yaw
+      imu.angular_velocity_covariance[0] = imu.linear_acceleration_covariance[0] = -1;  // not given
+      lidar_imu_pub_.publish(imu);
+      lidar_pub_.publish(cloudMessage(sim_->scan(), stamp));
+    }
     return s.t;
   }
 
@@ -265,6 +284,8 @@ class UsvSimNodelet : public nodelet::Nodelet {
   unsigned long truth_count_ = 0;
   sim::PackedCloud packed_;
   ros::Publisher jet_pub_, answering_pub_, bus_pub_, truth_pub_, gps_pub_, heading_pub_, vel_pub_, lidar_pub_, map_pub_;
+  ros::Publisher lidar_imu_pub_;
+  double cfg_lidar_imu_sigma_ = 0.0;
   ros::Subscriber auto_sub_, manual_sub_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;

@@ -60,9 +60,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return 0;
       }
       const Environment env(p);
-      for (double t = 0; t < 600; t += 7.3)
-        if (!env.current(t).allFinite() || !env.wind(t).allFinite() || !env.wave(t, 2.0).displacement.allFinite())
+      VehicleState s;
+      s.position = {3.0, -4.0, 2.0};
+      for (double t = 0; t < 600; t += 7.3) {
+        const WaveMotion w = env.wave(t, s, Hull());
+        if (!env.current(t).allFinite() || !env.wind(t).allFinite() || !w.displacement.allFinite() ||
+            !w.rate.allFinite() || !std::isfinite(w.roll + w.pitch + w.yaw) || !env.driftForce(0.3, Hull()).allFinite())
           violated("accepted environment parameters give non-finite forcing");
+      }
     }
   } catch (const ConfigError& e) {
     violated(std::string("parameters the loader accepted were refused by the model: ") + e.what());

@@ -20,6 +20,7 @@ struct ClosedLoopConfig {
   std::vector<Eigen::Vector3d> path;                 // NED waypoints
   Eigen::Vector3d start = Eigen::Vector3d::Zero();   // start position (NED)
   double start_yaw = 0.0;
+  std::string sea_state = "calm";                    // models::seaState: wind, waves (its current is replaced:)
   Eigen::Vector2d current = Eigen::Vector2d(0.0, 0.2);  // NED current [m/s] (0.2 m/s cross current)
   std::vector<sim::Buoy> buoys;                      // in the simulated world (the USV's LiDAR sees them)
   double max_time = 600.0;                           // [s]

@@ -78,6 +78,12 @@ class AuvModel {
   Eigen::Vector4d tau() const { return tcm_ * f_; }              // [X, Y, Z, N]
   const Counters& counters() const { return counters_; }
   const AuvParams& params() const { return p_; }
+  // What the waves act on, from the makers' data sheets: Girona500 1.5 x 1.0 x 1.0 m (IQUA Robotics), the aColor
+  // BlueROV2 Heavy-class 0.46 x 0.58 x 0.25 m (Blue Robotics); draft: half its height, as it floats.
+  static Hull hull(const AuvParams& p) {
+    return p.type == AuvType::Girona500 ? Hull{1.5, 1.0, 0.5} : Hull{0.46, 0.58, 0.125};
+  }
+  const Eigen::Vector2d& waveDrift() const { return drift_; }  // NED [N], last step
 
  private:
   AuvParams p_;
@@ -85,6 +91,7 @@ class AuvModel {
   Eigen::Vector4d m_, d_lin_, d_quad_;
   std::vector<Lookup1D> curves_;
   Eigen::VectorXd cmd_, f_;
+  Eigen::Vector2d drift_ = Eigen::Vector2d::Zero();
   VehicleState lf_, out_;
   Counters counters_;
 };

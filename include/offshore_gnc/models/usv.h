@@ -122,6 +122,10 @@ class UsvModel {
   JetState jet(int i) const;  // 0 port, 1 starboard
   const Eigen::Vector3d& tau() const { return tau_; }          // propulsion [X N, Y N, N Nm] last step
   const Eigen::Vector3d& tauWind() const { return tau_wind_; }
+  const Eigen::Vector2d& waveDrift() const { return drift_; }  // mean wave drift force, NED [N], last step
+  // What the waves act on: the thesis' 8 m hull (Table 3.3's length); beam 2.5 m and draft 0.5 m are our estimates
+  // for an 8 m waterjet workboat (not given in the thesis).
+  static Hull hull(const UsvParams& p) { return Hull{p.length, 2.5, 0.5}; }
   const UsvCommand& command() const { return cmd_; }
   const Counters& counters() const { return counters_; }
   const UsvParams& params() const { return p_; }
@@ -147,6 +151,7 @@ class UsvModel {
   VehicleState lf_, out_;
   std::array<JetState, 2> jets_;
   Eigen::Vector3d tau_ = Eigen::Vector3d::Zero(), tau_wind_ = Eigen::Vector3d::Zero();
+  Eigen::Vector2d drift_ = Eigen::Vector2d::Zero();
   Counters counters_;
 };
 

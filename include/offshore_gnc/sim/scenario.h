@@ -1,12 +1,14 @@
 #pragma once
-// Scenario files (config/scenarios/*.yaml, schema in docs/simulation.md): origin, current, start poses,
-// obstacles, underwater targets, walls and an optional geo-referenced black/white map image. The loader refuses
+// Scenario files (config/scenarios/*.yaml, schema in docs/simulation.md): origin, sea state (a named preset and
+// current, wind and waves overriding it), start poses, obstacles, underwater targets, walls, the bottom and an
+// optional geo-referenced black/white map image. The loader refuses
 // unknown keys, missing or out-of-range values and impossible geometry with a ConfigError naming the key.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/models/environment.h"
 #include "offshore_gnc/sim/world.h"
 
 namespace offshore_gnc {
@@ -32,16 +34,8 @@ void mapFromImage(const std::string& path, double resolution, double north, doub
 struct Scenario {
   std::string name;
   geo::LatLonAlt origin = geo::kPyhajarviOrigin;
-  struct Current {
-    double north = 0, east = 0, variation = 0;
-    std::uint64_t seed = 1;
-  } current;
-  struct Wind {  // on the USV; direction it comes FROM, clockwise from north
-    double speed = 0, direction = 0, gust = 0;
-  } wind;
-  struct Waves {  // wave-frequency motion (models::EnvironmentParams), calm by default
-    double amplitude = 0, heave_amplitude = 0, yaw_amplitude = 0, frequency = 0.3, direction = 0;
-  } waves;
+  // sea_state preset (calm when none) with the file's current, wind and waves over it
+  models::EnvironmentParams sea;
   struct UsvStart {
     double north = 0, east = 0, yaw = 0;
   } usv;

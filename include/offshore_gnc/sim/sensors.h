@@ -8,17 +8,20 @@
 #include <vector>
 
 #include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/geo/geo.h"
+#include "offshore_gnc/models/environment.h"
 #include "offshore_gnc/models/state.h"
 #include "offshore_gnc/sim/world.h"
 
 namespace offshore_gnc {
 namespace sim {
 
-// Body (FRD) <- sensor transform of a sensor mounted at `mount_frd` with `yaw_frd` about the body's z axis; the
-// sensor's own frame is FRD (the sonar head, SonarBeam.msg) or FLU (the LiDAR's cloud). The simulators publish
-// it as the static TF and the ROS-free loops position their sensor data with it.
-Eigen::Isometry3d sensorMount(const Eigen::Vector3d& mount_frd, double yaw_frd, bool frd_sensor);
+// Body (FRD) <- sensor transform of a sensor mounted at `mount_frd` with `yaw_frd` about the body's z axis, then
+// `pitch_frd` about its y axis (nose up positive: a sonar head tilted down has a negative pitch); the sensor's own
+// frame is FRD (the sonar head, SonarBeam.msg) or FLU (the LiDAR's cloud). The simulators publish it as the static
+// TF and the ROS-free loops position their sensor data with it.
+Eigen::Isometry3d sensorMount(const Eigen::Vector3d& mount_frd, double yaw_frd, bool frd_sensor, double pitch_frd = 0.0);
 
 // ---------------------------------------------------------------- GPS-compass (USV)
 // An SBAS GPS-compass (e.g. a Hemisphere Vector): its position error is mostly slow (ionosphere, multipath) with
@@ -61,6 +64,21 @@ class GpsCompass {
 };
 
 // ---------------------------------------------------------------- LiDAR (SICK MRS1000-like)
+// What the water and the air add to a LiDAR on a boat (docs/simulation.md, "The LiDAR on the water": each figure
+// and its source). Whitecaps return the beams that land on them (a calm or rippled surface reflects them away);
+// the bow throws spray that returns beams near the hull; some returns drop out; the sensor's built-in IMU (the
+// MRS1000's option) reports its roll and pitch with each frame.
+struct LidarSeaConfig {
+  double foam_patch = 1.0;     // [m] size of a whitecap
+  double foam_life = 3.0;      // [s] how long one stays white
+  double spray_rate = 15.0;    // spray returns per frame for one unit of sea: Hs / 1 m + (speed / 4 m/s)^2
+  double spray_range = 5.0;    // [m] from the sensor: the spray zone about the bow
+  double spray_sector = deg2rad(180.0);  // centred ahead
+  double spray_height = 1.5;   // [m] above the water
+  double dropout = 0.01;       // a return is lost (wet, dark or grazing surfaces)
+  double imu_sigma = deg2rad(0.2);  // roll and pitch noise of the built-in IMU
+  static const ParamTable<LidarSeaConfig>& table();
+};
 struct LidarConfig {
   double rate_hz = 12.5;
   int layers = 4;
@@ -71,6 +89,7 @@ struct LidarConfig {
   double range_sigma = 0.03;    // [m]
   Eigen::Vector3d mount{1.5, 0.0, -1.0};  // sensor in body FRD [m]: on the bow, 1 m above the waterline
   double mount_yaw = 0.0;
+  LidarSeaConfig sea;
 };
 // One frame: ranges[layer * beams + beam], NaN = no return. Beam b's azimuth (clockwise, sensor frame) is
 // -aperture/2 + b * step; layer elevation positive = up.
@@ -79,6 +98,7 @@ struct LidarScan {
   int layers = 0, beams = 0;
   std::vector<float> ranges;
   std::vector<double> azimuth, elevation;
+  double roll = 0.0, pitch = 0.0;  // the built-in IMU: the sensor frame's attitude (FRD Euler) at the frame [rad]
   // Point of one return in the sensor frame, FRD (x forward, y starboard, z down).
   Eigen::Vector3d pointFrd(int layer, int beam) const;
 };
@@ -94,8 +114,11 @@ void packCloud(const LidarScan& scan, PackedCloud& out);
 
 class Lidar {
  public:
-  Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed);
-  // Scans the world from the vehicle's state (yaw only: the USV model is 3-DOF). Reuses `out`'s storage.
+  // `env`: the sea (its surface, whitecaps, waves); none = a calm, flat surface. Kept by pointer: it must outlive
+  // the LiDAR.
+  Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed, const models::Environment* env = nullptr);
+  // Scans the world from the vehicle's state: position (heave included), roll, pitch and yaw. Reuses `out`'s
+  // storage.
   void scan(const VehicleState& s, LidarScan& out);
   // What it sees from the next scan on (an obstacle that appears: the collision fault).
   void setWorld(const World& world) { world_ = world; }
@@ -103,16 +126,33 @@ class Lidar {
   int beams() const { return beams_; }
 
  private:
+  void spray(const VehicleState& s, const Eigen::Vector3d& sensor, const Eigen::Matrix3d& to_ned, LidarScan& out);
+
   LidarConfig cfg_;
   World world_;
+  const models::Environment* env_;
   int beams_;
   RayScene scene_;
   std::vector<Hit2d> hits_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> n_{0.0, 1.0};
+  std::uniform_real_distribution<double> u_{0.0, 1.0};
 };
 
 // ---------------------------------------------------------------- Mechanical imaging sonar (Micron-like)
+// What the water adds to the sonar picture (docs/simulation.md, "The sonar in the water": each figure and its
+// source). Reverberation from the surface (rising with the wind) and from a flat bottom where the beam's vertical
+// pattern reaches them; echoes from the buoys' mooring lines and the floating hulls' undersides; volume clutter
+// (fish, bubbles, debris): point scatterers drawn anew every ping. Intensities on the sonar's 0-255 scale.
+struct SonarWaterConfig {
+  double surface_reverb = 2.0;    // surface reverberation on the beam's axis, per (m/s of wind)^2
+  double bottom_reverb = 120.0;   // bottom reverberation on the beam's axis
+  double mooring_echo = 110.0;    // a mooring line in the beam
+  double hull_echo = 200.0;       // a floating hull's underside in the beam
+  double clutter_density = 0.02;  // volume scatterers per m^3 of insonified water
+  double clutter_echo = 60.0;     // their mean intensity (exponentially distributed)
+  static const ParamTable<SonarWaterConfig>& table();
+};
 struct SonarConfig {
   double ping_rate_hz = 20.0;    // beams per second at 10 m range
   double step = deg2rad(1.8);
@@ -124,6 +164,10 @@ struct SonarConfig {
   double near_field = 1.5;       // clutter from the vehicle structure inside this range [m]
   double noise_level = 12.0;     // mean speckle intensity
   Eigen::Vector3d mount{0.6, 0.0, -0.2};  // head in body FRD [m]
+  // The head tilted down [rad], as it is set up to search a lake's floor: its 35 deg fan then spans 2.5 deg above
+  // the horizon to 32.5 deg below it, so the surface stays out of the beam (docs/simulation.md).
+  double tilt = deg2rad(15.0);
+  SonarWaterConfig water;
 };
 struct SonarBeamReading {
   double t = 0.0;
@@ -138,15 +182,21 @@ enum SonarStatus : std::uint16_t {
 };
 class Sonar {
  public:
-  Sonar(const SonarConfig& cfg, const World& world, std::uint64_t seed);
+  // `env`: the sea (wind for the surface's roughness, the surface's elevation); none = calm. Kept by pointer.
+  Sonar(const SonarConfig& cfg, const World& world, std::uint64_t seed, const models::Environment* env = nullptr);
   // Next beam: the head steps, pings, and the echoes of targets and walls are drawn into the bins.
   void ping(const VehicleState& s, SonarBeamReading& out);
   const SonarConfig& config() const { return cfg_; }
   int binOfRange(double r) const;
 
  private:
+  // Mean reverberation of a boundary at elevation `off` from the beam's axis [rad], at slant range r: the two-way
+  // vertical beam pattern (Gaussian, -3 dB one way at the beam's edge) there.
+  double reverb(double level, double off, double r) const;
+
   SonarConfig cfg_;
   World world_;
+  const models::Environment* env_;
   double angle_;  // signed head angle, (-sector/2 .. sector/2)
   int direction_ = 1;
   bool reversed_ = false;

@@ -32,7 +32,7 @@ std::optional<AuvCommand> fromRcChannels(const std::vector<std::uint16_t>& chann
 // ArduSub-style mixer: each thruster's factor per axis is its column of the thruster configuration matrix,
 // normalised per axis; the sum is clamped to -1..1.
 Eigen::VectorXd mixToThrusters(const Eigen::MatrixXd& tcm, const AuvCommand& c);
-// Environment of a scenario: its current plus optional wind and waves.
+// Environment of a scenario: its sea state (preset, current, wind, waves).
 models::EnvironmentParams environmentOf(const Scenario& sc);
 
 // The obstacle of the `collision` fault: a barge broadside across the USV's course, appearing the first time the

@@ -1,6 +1,7 @@
 #pragma once
-// The simulated world the sensor models see: buoys (vertical cylinders), vessels (boxes), shorelines
-// (closed polygons of land, infinitely high), underwater walls (vertical segments) and underwater targets.
+// The simulated world the sensor models see: buoys (vertical cylinders, moored to the bottom), vessels (boxes),
+// shorelines (closed polygons of land, infinitely high), underwater walls (vertical segments), underwater
+// targets and a flat bottom.
 // NED frame (x north, y east, z down), SI units. ROS-free.
 #include <Eigen/Core>
 #include <vector>
@@ -12,12 +13,14 @@ struct Buoy {
   Eigen::Vector2d centre{0, 0};  // north, east [m]
   double radius = 0.5;
   double height = 1.0;  // above the waterline [m]
+  double draft = 0.5;   // below it [m]; a vertical mooring line runs from there to the bottom
 };
 
 struct Vessel {
   Eigen::Vector2d centre{0, 0};
   double yaw = 0.0;  // heading of the long axis [rad]
   double length = 8.0, width = 3.0, height = 2.0;
+  double draft = 0.5;  // [m]
 };
 
 struct Target {  // underwater object (sphere), e.g. the thesis' sunken target
@@ -37,6 +40,7 @@ struct World {
   std::vector<Polygon> shorelines;
   std::vector<Wall> walls;
   std::vector<Target> targets;
+  double bottom_depth = 0.0;  // flat bottom [m]; 0 = none (deep water)
 };
 
 // Vertical extent a horizontal 2-D hit covers: z from `top` (negative = above water) to `bottom`.

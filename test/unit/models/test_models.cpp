@@ -294,26 +294,127 @@ TEST(AuvModel, SurgeSteadyStateAndBadCommands) {
   EXPECT_DOUBLE_EQ(m.command()(0), -1.0);
 }
 
-TEST(Environment, DeterministicForASeedAndWavesInBand) {
+TEST(Environment, DeterministicForASeedAndIrregular) {
   EnvironmentParams p = loadEnvironmentParams("config/models/environment_lake.yaml");
   const Environment a(p), b(p);
   p.seed = 99;
   const Environment c(p);
   bool differs = false;
+  VehicleState s;
   for (double t = 0; t < 600; t += 7.3) {
     EXPECT_EQ(a.current(t), b.current(t));
     EXPECT_EQ(a.wind(t), b.wind(t));
-    EXPECT_EQ(a.wave(t, 0).yaw, b.wave(t, 0).yaw);
+    EXPECT_EQ(a.wave(t, s, Hull()).pitch, b.wave(t, s, Hull()).pitch);
     differs |= (a.current(t) - c.current(t)).norm() > 1e-6;
-    EXPECT_LE((a.current(t) - Eigen::Vector3d(0.05, 0.10, 0)).norm(), 0.05 + 1e-12);
+    EXPECT_LE((a.current(t) - Eigen::Vector3d(-38.0 / 300.0, 0.0, 0)).norm(), 0.05 + 1e-12);
   }
   EXPECT_TRUE(differs);
-  // Wave yaw has the configured period 2 pi / 0.3 s.
-  const double T = 2 * M_PI / 0.3;
-  EXPECT_NEAR(a.wave(10.0, 0).yaw, a.wave(10.0 + T, 0).yaw, 1e-12);
-  EXPECT_GT(std::abs(a.wave(0, 0).yaw - a.wave(T / 4, 0).yaw), 1e-4);
-  p.wave_frequency = 0.6;
+  p.wave_period = 0.1;  // below the table's 0.5 s
   EXPECT_THROW(Environment{p}, ConfigError);
+}
+
+// Statistics over a long record: mean and 1-sigma of a signal sampled every dt.
+struct Stats {
+  double mean = 0, sd = 0;
+};
+Stats stats(double t1, double dt, const std::function<double(double)>& f) {
+  double s = 0, s2 = 0;
+  int n = 0;
+  for (double t = 0; t < t1; t += dt, ++n) {
+    const double v = f(t);
+    s += v;
+    s2 += v * v;
+  }
+  return {s / n, std::sqrt(std::max(0.0, s2 / n - (s / n) * (s / n)))};
+}
+
+TEST(Environment, GustsHaveTheirSigmaAndWavesTheirSignificantHeight) {
+  EnvironmentParams p;
+  p.wind_speed = 6.7;
+  p.wind_gust = 0.67;
+  p.wave_height = 1.0;
+  p.wave_period = 5.0;
+  const Environment env(p);
+  const Stats wind = stats(20000, 0.5, [&](double t) { return env.windSpeed(t); });
+  EXPECT_NEAR(wind.mean, 6.7, 0.1);
+  EXPECT_NEAR(wind.sd, 0.67, 0.15);
+  // 4 sigma of the elevation is Hs; irregular: it does not repeat after a peak period
+  const Stats eta = stats(4000, 0.1, [&](double t) { return env.elevation(t, Eigen::Vector2d(10, 20)); });
+  EXPECT_NEAR(4 * eta.sd, 1.0, 0.1);
+  EXPECT_NEAR(eta.mean, 0.0, 0.02);
+  EXPECT_GT(std::abs(env.elevation(100.0, {0, 0}) - env.elevation(105.0, {0, 0})), 1e-3);
+}
+
+TEST(Environment, SeaStatesFromTheFieldDayAndBeaufort4) {
+  // Remote Sensing 2020, section 5: 30 m^3/s southward through the estuary's 300 m^2, 3.7 m/s from SSW
+  const EnvironmentParams f = seaState("field_day");
+  EXPECT_NEAR(f.current_north, -0.1, 1e-12);
+  EXPECT_NEAR(f.current_east, 0.0, 1e-12);
+  EXPECT_NEAR(f.wind_speed, 3.7, 1e-12);
+  EXPECT_NEAR(rad2deg(f.wind_direction), 202.5, 1e-9);
+  EXPECT_NEAR(seaState("field_day_auv").current_north, -38.0 / 300.0, 1e-12);
+  // a fetch-limited lake chop: centimetres, about a second
+  EXPECT_NEAR(f.wave_height, 0.066, 0.005);
+  EXPECT_NEAR(f.wave_period, 0.82, 0.05);
+  // Beaufort 4 fully developed: the WMO's probable height of 1 m, Tp 5 s
+  const EnvironmentParams m = seaState("moderate");
+  EXPECT_NEAR(m.wave_height, 1.0, 0.05);
+  EXPECT_NEAR(m.wave_period, 5.0, 0.1);
+  EXPECT_NEAR(std::hypot(m.current_north, m.current_east), 0.2, 0.01);
+  EXPECT_EQ(seaState("calm").wave_height, 0.0);
+  EXPECT_THROW(seaState("storm"), ConfigError);
+  // limits: the fetch-limited sea grows to the fully developed one, never past it
+  EXPECT_LT(fetchLimitedSea(6.7, 1e4).height, fetchLimitedSea(6.7, 1e9).height);
+  EXPECT_LT(fetchLimitedSea(6.7, 1e12).height, 1.5 * fullyDevelopedSea(6.7).height);
+  EXPECT_NEAR(whitecapFraction(6.7), 0.0025, 0.0003);
+  // a preset with keys overriding it
+  const EnvironmentParams o = environmentParamsFromYaml("sea_state: moderate\nwind: {speed: 3.0}\n", "e.yaml");
+  EXPECT_EQ(o.wind_speed, 3.0);
+  EXPECT_EQ(o.wave_height, m.wave_height);
+}
+
+TEST(Environment, TheHullFollowsLongWavesAndAveragesShortOnes) {
+  EnvironmentParams p;
+  p.wave_height = 1.0;
+  p.wave_period = 5.0;  // lambda 39 m
+  p.wave_direction = M_PI / 2;  // from the east: beam seas for a hull heading north
+  const Environment env(p);
+  VehicleState s;
+  const Hull small{1.0, 0.5, 0.2}, usv{8.0, 2.5, 0.5};
+  const double heave = stats(3000, 0.1, [&](double t) { return env.wave(t, s, small).displacement.z(); }).sd;
+  EXPECT_NEAR(4 * heave, 1.0, 0.12);  // a small hull heaves with the surface
+  const double roll = stats(3000, 0.1, [&](double t) { return env.wave(t, s, usv).roll; }).sd;
+  const double pitch = stats(3000, 0.1, [&](double t) { return env.wave(t, s, usv).pitch; }).sd;
+  EXPECT_GT(roll, deg2rad(2.0));  // beam seas roll it (the slope of 1 m, 39 m waves: about 4 deg peak)
+  EXPECT_LT(pitch, 0.02 * roll);  // and do not pitch it
+  // head seas of a lake chop, 0.1 m and 1.2 s (lambda 2.2 m) on the 8 m hull: nearly nothing
+  p.wave_height = 0.1;
+  p.wave_period = 1.2;
+  p.wave_direction = 0.0;
+  const Environment chop(p);
+  const double small_pitch = stats(300, 0.02, [&](double t) { return chop.wave(t, s, usv).pitch; }).sd;
+  EXPECT_LT(small_pitch, deg2rad(0.5));
+  // below the surface the motion decays as exp(-k z)
+  s.position.z() = 10.0;
+  EXPECT_LT(stats(3000, 0.1, [&](double t) { return env.wave(t, s, small).displacement.z(); }).sd, 0.3 * heave);
+}
+
+TEST(Environment, DriftForceAlongTheWavesLargestBeamOn) {
+  EnvironmentParams p;
+  p.wave_height = 1.0;
+  p.wave_period = 5.0;
+  p.wave_direction = 0.0;  // from the north: pushing south
+  const Environment env(p);
+  const Hull usv{8.0, 2.5, 0.5};
+  const Eigen::Vector2d head = env.driftForce(0.0, usv), beam = env.driftForce(M_PI / 2, usv);
+  EXPECT_LT(head.x(), 0.0);
+  EXPECT_NEAR(head.y(), 0.0, 1e-9);
+  EXPECT_NEAR(beam.x() / head.x(), 8.0 / 2.5, 1e-9);
+  // quadratic in the height; long waves pass under a shallow draft
+  p.wave_height = 2.0;
+  EXPECT_NEAR(Environment(p).driftForce(0.0, usv).x() / head.x(), 4.0, 1e-9);
+  EXPECT_LT(env.driftForce(0.0, Hull{8.0, 2.5, 0.1}).norm(), 0.3 * head.norm());
+  EXPECT_EQ(Environment().driftForce(0.0, usv).norm(), 0.0);
 }
 
 TEST(Blocks, TransferFunctionAndLookups) {
@@ -373,7 +474,11 @@ TEST(ParamsYaml, ConfigFilesLoadAndBadValuesAreNamed) {
   dir.replace(dir.find("direction: [1, 0, 0]"), 20, "direction: [1, 1, 0]");
   EXPECT_NE(message([&] { auvParamsFromYaml(dir, "g.yaml"); }).find("thrusters[0]/direction"), std::string::npos);
   EXPECT_NE(message([] { loadUsvParams("/nonexistent.yaml"); }).find("cannot open"), std::string::npos);
-  EXPECT_NE(message([] { environmentParamsFromYaml("wave_frequency: 1.0\n", "e.yaml"); }).find("wave_frequency"),
+  EXPECT_NE(message([] { environmentParamsFromYaml("waves: {period: 0.1}\n", "e.yaml"); }).find("waves/period"),
+            std::string::npos);
+  EXPECT_NE(message([] { environmentParamsFromYaml("waves: {frequency: 0.3}\n", "e.yaml"); }).find("waves.frequency"),
+            std::string::npos);
+  EXPECT_NE(message([] { environmentParamsFromYaml("sea_state: storm\n", "e.yaml"); }).find("moderate"),
             std::string::npos);
   EXPECT_NE(message([] { usvParamsFromYaml("model: nomoto\n", "u.yaml"); }).find("'mass' is missing"),
             std::string::npos);
@@ -383,22 +488,62 @@ TEST(UsvModel, WindPushesDownwindAndWavesOnlyShowInTheReportedState) {
   EnvironmentParams ep;
   ep.wind_speed = 10.0;
   ep.wind_direction = M_PI / 2;  // from the east: the air moves west
-  ep.wave_yaw_amplitude = 0.05;
-  ep.wave_frequency = 0.25;
+  ep.wave_height = 1.0;
+  ep.wave_period = 5.0;
+  ep.wave_direction = M_PI / 4;  // oblique seas: heave, roll, pitch and yaw
   const Environment env(ep);
   UsvModel m(usvParams());
-  double min_wf = 1e9, max_wf = -1e9;
+  double max_yaw = 0, max_roll = 0, max_pitch = 0, max_heave = 0;
   for (int k = 0; k < 12000; ++k) {
     m.step(0.01, UsvCommand{}, env);
-    const double wf = angleDiff(m.state().yaw, m.lowFrequencyState().yaw);
-    min_wf = std::min(min_wf, wf);
-    max_wf = std::max(max_wf, wf);
+    max_yaw = std::max(max_yaw, std::abs(angleDiff(m.state().yaw, m.lowFrequencyState().yaw)));
+    max_roll = std::max(max_roll, std::abs(m.state().roll));
+    max_pitch = std::max(max_pitch, std::abs(m.state().pitch));
+    max_heave = std::max(max_heave, std::abs(m.state().position.z()));
+    ASSERT_EQ(m.lowFrequencyState().roll, 0.0);  // the 3-DOF model itself never rolls
   }
   EXPECT_LT(m.lowFrequencyState().position.y(), -1.0);  // drifted west
   EXPECT_GT(m.tauWind().norm(), 0.0);
-  EXPECT_NEAR(max_wf, 0.05, 1e-3);  // the full wave-frequency yaw swing is seen, and only there
-  EXPECT_NEAR(min_wf, -0.05, 1e-3);
+  EXPECT_GT(m.waveDrift().norm(), 50.0);  // and the waves push it too
+  EXPECT_GT(max_yaw, deg2rad(0.5));
+  EXPECT_GT(max_roll, deg2rad(1.0));
+  EXPECT_GT(max_pitch, deg2rad(1.0));
+  EXPECT_GT(max_heave, 0.3);
   EXPECT_TRUE(isFinite(m.state()));
+}
+
+TEST(UsvModel, TheWaveDriftForceCarriesItDownWave) {
+  EnvironmentParams ep;
+  ep.wave_height = 1.0;
+  ep.wave_period = 5.0;
+  ep.wave_direction = 0.0;  // from the north
+  const Environment env(ep);
+  UsvModel m(usvParams());
+  for (int k = 0; k < 12000; ++k) m.step(0.01, UsvCommand{}, env);
+  EXPECT_LT(m.lowFrequencyState().position.x(), -3.0);  // 120 s later, well south
+  EXPECT_NEAR(m.lowFrequencyState().position.y(), 0.0, 0.5);
+}
+
+TEST(AuvModel, WavesMoveASubmergedAuvLittleAndDoNotDriftIt) {
+  EnvironmentParams ep;
+  ep.wave_height = 1.0;
+  ep.wave_period = 5.0;
+  const Environment env(ep);
+  AuvModel deep(AuvParams::girona500()), surfaced(AuvParams::girona500());
+  VehicleState s;
+  s.position.z() = 3.0;
+  deep.reset(s);
+  surfaced.reset(VehicleState());
+  const Eigen::VectorXd hold = Eigen::VectorXd::Zero(deep.thrusters());
+  double max_heave = 0;
+  for (int k = 0; k < 100; ++k) {
+    deep.step(0.01, hold, env);
+    surfaced.step(0.01, hold, env);
+    max_heave = std::max(max_heave, std::abs(deep.state().position.z() - deep.lowFrequencyState().position.z()));
+  }
+  EXPECT_EQ(deep.waveDrift().norm(), 0.0);
+  EXPECT_GT(surfaced.waveDrift().norm(), 1.0);
+  EXPECT_LT(max_heave, 0.5);
 }
 
 TEST(AuvModel, InverseCurveRoundTrips) {

@@ -1,7 +1,9 @@
-// LiDAR target extraction on synthetic MRS1000-like and dense frames with known buoys and vessels.
+// LiDAR target extraction on synthetic MRS1000-like and dense frames with known buoys and vessels; what the water
+// adds: tilted frames, isolated returns (spray), targets of one frame only (whitecaps).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
@@ -14,6 +16,13 @@ using namespace offshore_gnc::perception;
 namespace {
 
 const double kMrsAperture = deg2rad(275.0);
+
+// One frame's targets at once: the segmentation tests look at single frames.
+LidarConfig oneFrame() {
+  LidarConfig c;
+  c.confirm_frames = 1;
+  return c;
+}
 
 scenes::Scene harbour() {
   scenes::Scene s;
@@ -52,7 +61,7 @@ void expectBuoy(const LidarResult& r, const scenes::Circle& c) {
 }  // namespace
 
 TEST(LidarTargets, Mrs1000FrameFindsBuoysAndVessel) {
-  LidarConfig cfg;
+  LidarConfig cfg = oneFrame();
   LidarTargetExtractor ex(cfg);
   const auto scene = harbour();
   for (bool organised : {true, false}) {
@@ -74,7 +83,7 @@ TEST(LidarTargets, Mrs1000FrameFindsBuoysAndVessel) {
 }
 
 TEST(LidarTargets, DenseFrameSameTargets) {
-  LidarTargetExtractor ex(LidarConfig{});
+  LidarTargetExtractor ex(oneFrame());
   const auto scene = harbour();
   const auto cloud = scenes::lidarFrame(scene, 128, 1024, 2 * kPi, deg2rad(10), true);
   const LidarResult r = ex.extract(cloud.view());
@@ -88,7 +97,7 @@ TEST(LidarTargets, GapThresholdSplitsCloseObjects) {
   scenes::Scene s;
   s.circles = {{20.0, -1.25, 0.5}, {20.0, 1.25, 0.5}};  // 1.5 m of water between them
   const auto cloud = scenes::lidarFrame(s, 4, 1100, kMrsAperture, deg2rad(3.75), true);
-  LidarConfig cfg;
+  LidarConfig cfg = oneFrame();
   cfg.gap = 1.0;
   cfg.layer_merge = 1.0;
   EXPECT_EQ(LidarTargetExtractor(cfg).extract(cloud.view()).targets.size(), 2u);
@@ -103,7 +112,7 @@ TEST(LidarTargets, WrapAtTheEndOfA360ApertureIsOneTarget) {
   scenes::Scene s;
   s.circles = {{-20.0, 0.0, 1.0}};  // straight astern: the scan starts and ends on it
   const auto cloud = scenes::lidarFrame(s, 1, 3600, 2 * kPi, 0.0, true);
-  const auto r = LidarTargetExtractor(LidarConfig{}).extract(cloud.view());
+  const auto r = LidarTargetExtractor(oneFrame()).extract(cloud.view());
   ASSERT_EQ(r.targets.size(), 1u);
   EXPECT_NEAR(r.targets[0].origin.y(), 0.0, 0.05);
   EXPECT_NEAR(r.targets[0].range, 19.0, 0.05);
@@ -114,7 +123,7 @@ TEST(LidarTargets, HullRangeAndHeightFilters) {
   scenes::Scene s;
   s.circles = {{1.0, -0.7, 0.2}, {20.0, 0.0, 0.5}};  // the first is on the own hull (e.g. the mast)
   const auto cloud = scenes::lidarFrame(s, 4, 1100, kMrsAperture, deg2rad(3.75), true);
-  LidarConfig cfg;
+  LidarConfig cfg = oneFrame();
   cfg.min_range = 0.2;
   cfg.hull_min_x = -2.5; cfg.hull_max_x = 2.5; cfg.hull_min_y = -1.0; cfg.hull_max_y = 1.0;
   auto r = LidarTargetExtractor(cfg).extract(cloud.view());
@@ -128,17 +137,18 @@ TEST(LidarTargets, HullRangeAndHeightFilters) {
   EXPECT_LT(r.targets[0].centroid.z(), -0.5);
   EXPECT_GT(r.targets[0].height, 0.0);
   // Range: nothing beyond 10 m.
-  cfg = LidarConfig{};
+  cfg = oneFrame();
   cfg.max_range = 10.0;
   cfg.min_range = 2.0;
   EXPECT_TRUE(LidarTargetExtractor(cfg).extract(cloud.view()).targets.empty());
 }
 
 TEST(LidarTargets, BadCloudsAreRejectedAndCounted) {
-  LidarTargetExtractor ex(LidarConfig{});
+  LidarTargetExtractor ex(oneFrame());
   scenes::Scene s;
   s.circles = {{20.0, 5.0, 0.5}};
-  const auto cloud = scenes::lidarFrame(s, 4, 100, kMrsAperture, 0.05, true);
+  // 400 beams: the buoy returns on 4 beams per layer (a single return would be dropped as spray)
+  const auto cloud = scenes::lidarFrame(s, 4, 400, kMrsAperture, 0.05, true);
 
   CloudView v = cloud.view();
   v.size -= 5;  // data size disagrees with width x height x point_step
@@ -174,14 +184,14 @@ TEST(LidarTargets, BadCloudsAreRejectedAndCounted) {
 
 TEST(LidarTargets, AllNanCloudGivesNoTargets) {
   const auto cloud = scenes::lidarFrame(scenes::Scene{}, 4, 200, kMrsAperture, 0.05, true);
-  const auto r = LidarTargetExtractor(LidarConfig{}).extract(cloud.view());
+  const auto r = LidarTargetExtractor(oneFrame()).extract(cloud.view());
   EXPECT_EQ(r.error, CloudError::None);
   EXPECT_TRUE(r.targets.empty());
   EXPECT_EQ(r.non_finite, 800u);
 }
 
 TEST(LidarTargets, BadConfigNamesTheParameter) {
-  LidarConfig cfg;
+  LidarConfig cfg = oneFrame();
   cfg.gap = -1;
   try {
     LidarTargetExtractor ex(cfg);
@@ -208,4 +218,49 @@ TEST(TargetGeometry, AxisRunsFromTheFirstToTheLastReturnAndTurnsWithTheFrame) {
   EXPECT_NEAR((m.axis - T.linear() * g.axis).norm(), 0.0, 1e-12);
   EXPECT_NEAR(m.axis.x(), -g.axis.y(), 1e-12);  // a quarter turn
   EXPECT_TRUE(describeTarget({}, Eigen::Vector3d::Zero()).axis.isZero());  // no points: unknown
+}
+
+TEST(LidarTargets, ATiltedFrameIsLevelledBeforeTheHeightBand) {
+  // A sensor 1 m above the water, pitched 4 deg down: its lowest layer meets the water 12 m ahead. Make every
+  // beam's water return in the tilted frame (z = -1 in the levelled frame); the band z >= -0.6 must drop them.
+  const double pitch = deg2rad(-4.0);  // REP-103: positive pitch about y (left) is nose down; FRD nose-down -4
+  const Eigen::Matrix3d level = levelling(0.0, -pitch);
+  scenes::Cloud c = scenes::lidarFrame(scenes::Scene{}, 4, 1100, kMrsAperture, deg2rad(3.75), true);
+  for (std::size_t i = 0; i < std::size_t(4) * 1100; ++i) {
+    const double a = -kMrsAperture / 2 + kMrsAperture * double(i % 1100) / 1100, r = 12.0;
+    const Eigen::Vector3d water(r * std::cos(a), r * std::sin(a), -1.0);  // levelled
+    const Eigen::Vector3d tilted = level.transpose() * water;
+    const float p[3] = {float(tilted.x()), float(tilted.y()), float(tilted.z())};
+    std::memcpy(c.data.data() + i * c.point_step, p, sizeof p);
+  }
+  LidarConfig cfg = oneFrame();
+  cfg.min_z = -0.6;
+  EXPECT_TRUE(LidarTargetExtractor(cfg).extract(c.view(), level).targets.empty());
+  // unlevelled, the water ahead is at z = -1 + 12 sin(4 deg) = -0.16: a wall of false targets
+  EXPECT_FALSE(LidarTargetExtractor(cfg).extract(c.view()).targets.empty());
+}
+
+TEST(LidarTargets, IsolatedReturnsAndOneFrameTargetsAreDropped) {
+  // Spray: single returns on beams far apart, close together in space across the layers
+  scenes::Cloud c = scenes::lidarFrame(scenes::Scene{}, 4, 1100, kMrsAperture, deg2rad(3.75), true);
+  for (int l = 0; l < 4; ++l) {
+    const float p[3] = {3.0f + 0.2f * l, 0.3f * l, -0.5f};
+    std::memcpy(c.data.data() + (std::size_t(l) * 1100 + 550 + 7 * l) * c.point_step, p, sizeof p);
+  }
+  EXPECT_TRUE(LidarTargetExtractor(oneFrame()).extract(c.view()).targets.empty());
+  // A buoy: reported from its second frame on (confirm_frames 2); a target that moved 5 m is a new one.
+  scenes::Scene s;
+  s.circles = {{20.0, 5.0, 0.5}};
+  const auto a = scenes::lidarFrame(s, 4, 1100, kMrsAperture, deg2rad(3.75), true);
+  s.circles = {{25.0, 5.0, 0.5}};
+  const auto b = scenes::lidarFrame(s, 4, 1100, kMrsAperture, deg2rad(3.75), true);
+  LidarConfig two;
+  two.confirm_frames = 2;
+  LidarTargetExtractor ex{two};
+  auto r = ex.extract(a.view());
+  EXPECT_TRUE(r.targets.empty());
+  EXPECT_EQ(r.unconfirmed, 1u);
+  EXPECT_EQ(ex.extract(a.view()).targets.size(), 1u);
+  EXPECT_TRUE(ex.extract(b.view()).targets.empty());
+  EXPECT_EQ(ex.extract(b.view()).targets.size(), 1u);
 }

@@ -41,7 +41,7 @@ struct Sim {
     SonarBeamView b;
     b.stamp = t;
     b.bearing = wrapTwoPi(bearing);
-    b.beam_width = deg2rad(3.0);
+    b.beam_width = kStep;  // sonarBins casts a ray: a beam as wide as one step (the extractor takes it off widths)
     b.range_resolution = kRes;
     b.range_offset = 0.0;
     b.status = status;
@@ -191,7 +191,8 @@ TEST(SonarTargets, MinimumRangeThresholdAndHeadStatus) {
 
 TEST(SonarTargets, BadBeamsAreRejectedAndCounted) {
   SonarTargetExtractor ex(SonarConfig{});
-  std::vector<std::uint8_t> bins(100, 200);
+  std::vector<std::uint8_t> bins(100, 20);
+  bins[50] = 200;  // an echo on the speckle (a uniform 200 would be background to the CFAR, not an echo)
   SonarBeamView b;
   b.bearing = 1.0; b.range_resolution = 0.1; b.bins = bins.data(); b.num_bins = 0;
   using S = SonarTargetExtractor::BeamStatus;

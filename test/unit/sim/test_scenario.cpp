@@ -40,7 +40,13 @@ TEST(Scenario, ShippedScenariosLoad) {
   EXPECT_NEAR(a.world.buoys[0].radius, 0.6, 1e-12);
   ASSERT_EQ(a.world.targets.size(), 1u);
   EXPECT_NEAR(a.world.targets[0].position.z(), 5.0, 1e-12);
-  EXPECT_NEAR(a.current.east, 0.2, 1e-12);
+  // the field day: 30 m^3/s through the estuary's 300 m^2 to the south, wind 3.7 m/s from SSW; a 7 m lake
+  EXPECT_NEAR(a.sea.current_north, -0.1, 1e-12);
+  EXPECT_NEAR(a.sea.wind_speed, 3.7, 1e-12);
+  EXPECT_GT(a.sea.wave_height, 0.0);
+  EXPECT_NEAR(a.world.bottom_depth, 7.0, 1e-12);
+  EXPECT_NEAR(a.world.buoys[0].draft, 0.5, 1e-12);
+  EXPECT_NEAR(loadScenario("config/scenarios/no_target.yaml").sea.wave_height, 1.0, 0.05);  // Beaufort 4
 
   const Scenario m = loadScenario("config/scenarios/pyhajarvi_map.yaml");
   EXPECT_EQ(m.map.width, 200);
@@ -83,7 +89,10 @@ TEST(Scenario, RefusesUnknownMissingAndOutOfRange) {
   expectRefused(std::string(kBase) + "obstacles:\n  - {type: rock, north: 1, east: 40}\n", {"obstacles[0].type"});
   expectRefused(std::string(kBase) + "targets:\n  - {north: 1, east: 2, depth: .nan, radius: 0.5}\n",
                 {"targets[0].depth"});
-  expectRefused(std::string(kBase) + "current: {north: 9}\n", {"current.north"});
+  expectRefused(std::string(kBase) + "current: {north: 9}\n", {"current/north", "out of range"});
+  expectRefused(std::string(kBase) + "waves: {amplitude: 0.3}\n", {"waves.amplitude", "not a known key"});
+  expectRefused(std::string(kBase) + "sea_state: gale\n", {"sea_state", "field_day"});
+  expectRefused(std::string(kBase) + "bottom: {depth: 7, slope: 2}\n", {"bottom.slope"});
   expectRefused("name: t\norigin: {latitude: 61, longitude: 23}\nauv: {start: {north: 0, east: 0, depth: 1}}\n",
                 {"'usv'", "missing"});
   expectRefused(std::string(kBase) + "map: {image: nothere.png, resolution: 1, north: 0, east: 0}\n",
@@ -98,6 +107,8 @@ TEST(Scenario, RefusesImpossibleGeometry) {
                 {"walls[0]", "zero length"});
   expectRefused(std::string(kBase) + "targets:\n  - {north: 1, east: 2, depth: 0.2, radius: 0.5}\n",
                 {"targets[0].depth"});  // would stick out of the water
+  expectRefused(std::string(kBase) + "bottom: {depth: 4}\ntargets:\n  - {north: 1, east: 2, depth: 3.8, radius: 0.5}\n",
+                {"targets[0].depth", "below the bottom"});
   expectRefused(std::string(kBase) +
                     "map: {image: pyhajarvi_lake.png, resolution: 1, north: -60, east: -195}\n",  // start on land
                 {"usv.start", "map"});

@@ -17,6 +17,7 @@ namespace {
 LidarConfig quietLidar() {
   LidarConfig c;
   c.range_sigma = 0.0;
+  c.sea.dropout = 0.0;  // geometry only: every return kept
   c.mount = {0.0, 0.0, -1.0};  // 1 m above the water, at the vehicle's origin
   return c;
 }
@@ -132,6 +133,8 @@ namespace {
 SonarConfig quietSonar() {
   SonarConfig c;
   c.mount = Eigen::Vector3d::Zero();
+  c.water.clutter_density = 0.0;  // geometry only: no volume clutter
+  c.tilt = 0.0;                   // a level head
   return c;
 }
 // Pings until the head points at `angle` (signed, clockwise from forward) and returns that beam.
