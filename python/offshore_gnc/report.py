@@ -20,7 +20,7 @@ import yaml
 from offshore_gnc import tools
 
 THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4 Girona500 AUV)
-    "usv_rmse_m": 1.5482, "usv_sd_m": 0.7764, "usv_mae_m": 1.3397, "auv_rmse_m": 0.23,
+    "usv_xte_est_rmse_m": 1.5482, "usv_xte_est_sd_m": 0.7764, "usv_xte_est_mae_m": 1.3397, "auv_xte_true_rmse_m": 0.23,
 }
 
 MODE_FOLLOW_PATH = 1  # GuidanceStatus.MODE_FOLLOW_PATH (for the plots; the metrics tool filters the same)
@@ -42,25 +42,34 @@ def tracking_metrics(path, selector=None):
 
 
 def split_tracking(status_msgs, path=None, truth=None):
-    """Cross-track figures of an AUV's GuidanceStatus samples split at the first waypoint reached: the approach
-    (leg 1, from wherever the vehicle was to the path's first switch; thesis Table 4.4 leaves it out) and the
-    tracking after it (legs 2 on). Each on the guidance's own error (on its navigation estimate) and, given the
-    followed path [(north, east)] and the true track [(t, north, east, ...)], on the truth: the true position's
-    distance from the active leg. All through the same C++ tool as the bag figures, fed CSV files."""
+    """Cross-track figures of a vehicle's GuidanceStatus samples: all of them, and split at the first waypoint
+    reached: the approach (leg 1, from wherever the vehicle was to the path's first switch; thesis Table 4.4 leaves
+    it out) and the tracking after it (legs 2 on). Each on the guidance's own error (on its navigation estimate) and,
+    given the followed path [(north, east)] (or the paths in time, [(t, path)]: each sample's the latest at its time)
+    and the true track [(t, north, east, ...)], on the truth: the true position's distance from the active leg. All
+    through the same C++ tool as the bag figures, fed CSV files."""
     import tempfile
+    timed = bool(path) and isinstance(path[0][1], list)
+    times = [x[0] for x in path] if timed else []
     truth_xte = []
     for t, m in status_msgs:
         k = m.active_leg
+        if timed:
+            i = bisect.bisect_right(times, t)
+            path_now = path[i - 1][1] if i else None
+        else:
+            path_now = path
         p = _interpolate(truth or [], t)
-        if not path or p is None or not 1 <= k < len(path):
+        if not path_now or p is None or not 1 <= k < len(path_now):
             truth_xte.append(float("nan"))
             continue
-        (an, ae), (bn, be) = path[k - 1], path[k]
+        (an, ae), (bn, be) = path_now[k - 1], path_now[k]
         length = math.hypot(bn - an, be - ae)
         truth_xte.append(((bn - an) * (p[1] - ae) - (be - ae) * (p[0] - an)) / length if length > 0 else float("nan"))
     out = {}
     with tempfile.TemporaryDirectory() as d:
-        for name, keep in (("approach", lambda m: m.active_leg < 2), ("tracking", lambda m: m.active_leg >= 2)):
+        for name, keep in (("all", lambda m: True), ("approach", lambda m: m.active_leg < 2),
+                           ("tracking", lambda m: m.active_leg >= 2)):
             csv = os.path.join(d, name + ".csv")
             with open(csv, "w") as f:
                 f.write("mode,cross_track_error,cross_track_error_truth\n")
@@ -441,11 +450,16 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     auv_xte = [(t, m.cross_track_error) for t, m in auv_searching if m.mode == MODE_FOLLOW_PATH]
     wait_drift, hold_p95 = station_keeping(usv_track, u["/usv/mission/status"], u["/usv/guidance/status"])
     us = tracking_metrics(usv_bag or "", "/usv/guidance/status")
-    # the path followed: the planner's when it published one (SBB waypoints included), else the mission's; the
-    # search's coverage, the longest (the hold and ascent paths come after it)
-    followed = [m for _, m in (a["/auv/guidance/planned_path"] or a["/auv/guidance/path"]) if m.poses]
-    auv_path = path_ned(max(followed, key=lambda m: len(m.poses))) if followed else None
+    # the path followed: the planner's when it published one (SBB waypoints included), else the mission's. The AUV's
+    # search: its coverage, the longest (the hold and ascent paths come after it). The USV: the one guidance had at
+    # each sample (the transit, then the recovery's), as the ROS-free mission measures it.
+    def followed(bag, v):
+        return [(t, m) for t, m in (bag["/%s/guidance/planned_path" % v] or bag["/%s/guidance/path" % v]) if m.poses]
+    auv_paths = followed(a, "auv")
+    auv_path = path_ned(max(auv_paths, key=lambda x: len(x[1].poses))[1]) if auv_paths else None
     au_split = split_tracking(auv_searching, auv_path, auv_track)
+    us_true = split_tracking(u["/usv/guidance/status"], [(t, path_ned(m)) for t, m in followed(u, "usv")],
+                             usv_track)["all_truth"]
     au, au_approach = au_split["tracking_truth"], au_split["approach_truth"]
     nav_during = [e for t, e in nav_err if t <= auv_end_t]
     nav_after = [e for t, e in nav_err if t > auv_end_t]
@@ -491,10 +505,17 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     recovered = bool((outcome or {}).get("recovered")) or any(m.phase == "RECOVERED" for _, m in u["/usv/mission/status"])
     safety_stop = any(m.active_rule in m.active_rules and m.active_rule != "manual" and m.action >= ACTION_HOLD
                       for _, m in u["/usv/safety/transitions"] + a["/auv/safety/transitions"])
+    # where the USV really held at the target (its last ARRIVED status: it then leaves for the AUV), else where it
+    # ended, against the true target (the stand-off is part of this distance)
+    arrived_t = [_stamp(t, m) for t, m in u["/usv/mission/status"] if m.phase == "ARRIVED"]
+    usv_at = (_at(usv_track, arrived_t[-1]) if arrived_t else usv_track[-1]) if usv_track else None
+    final_distance = (min(math.hypot(usv_at[1] - tt["north"], usv_at[2] - tt["east"]) for tt in targets_true)
+                      if usv_at and targets_true else float("nan"))
     verdict, min_clearance, auv_clearance, recovery_distance = judge(scenario, u["/usv/ground_truth/odom"], {
         "held": held, "recovered": recovered,
         "auv_no_target": any(m.phase == "NO_TARGET" for _, m in a["/auv/mission/status"]),
-        "target_error": target_error, "died": bool(died), "safety_stop": safety_stop},
+        "target_error": target_error, "final_distance": final_distance, "died": bool(died),
+        "safety_stop": safety_stop},
         auv_track, (outcome or {}).get("auv_model", "girona500")) if scenario else (
         "timeout", float("nan"), float("nan"), float("nan"))
     rec = recovery_figures(auv_track, a["/auv/mission/status"], u["/usv/mission/status"])
@@ -503,12 +524,16 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "success": verdict == "success",
         "outcome": verdict,  # closed_loop/outcome.h's class; the sentence in reason
         "reason": (outcome or {}).get("reason", last_usv.detail if last_usv else "no USV status recorded"),
-        "usv_rmse_m": us["rmse"], "usv_sd_m": us["sd"], "usv_mae_m": us["mae"], "usv_xte_samples": us["n"],
-        "auv_rmse_m": au["rmse"], "auv_sd_m": au["sd"], "auv_mae_m": au["mae"], "auv_xte_samples": au["n"],
+        # cross-track errors while following a path: _est on the vehicle's navigation estimate (guidance's own, as
+        # the thesis' Table 5.1 was measured on the USV's GPS), _true the true position's distance from the leg
+        "usv_xte_est_rmse_m": us["rmse"], "usv_xte_est_sd_m": us["sd"], "usv_xte_est_mae_m": us["mae"],
+        "usv_xte_est_samples": us["n"], "usv_xte_true_rmse_m": us_true["rmse"], "usv_xte_true_samples": us_true["n"],
+        "auv_xte_true_rmse_m": au["rmse"], "auv_xte_true_sd_m": au["sd"], "auv_xte_true_mae_m": au["mae"],
+        "auv_xte_true_samples": au["n"],
         # the AUV's figures above count from the first waypoint reached (as Table 4.4); its approach apart
-        "auv_approach_rmse_m": au_approach["rmse"], "auv_approach_samples": au_approach["n"],
+        "auv_approach_xte_true_rmse_m": au_approach["rmse"], "auv_approach_xte_true_samples": au_approach["n"],
         # the same from the guidance's own cross-track error, i.e. on the AUV's navigation estimate
-        "auv_rmse_estimate_m": au_split["tracking"]["rmse"],
+        "auv_xte_est_rmse_m": au_split["tracking"]["rmse"],
         "target_error_m": target_error, "target_error_3d_m": target_error_3d,
         # what the AUV navigated on, and how well: its estimate's horizontal error against its ground truth
         "auv_nav_source": "usbl" if fixes_ok else "ins",
@@ -519,8 +544,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
         "min_clearance_m": min_clearance,  # the hull's (sim/contact.h), not the reference point's
         # where the USV really ended, against the true target (the stand-off is part of this distance)
-        "usv_final_distance_to_target_m": (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
-                                               for tt in targets_true) if usv_track and targets_true else float("nan")),
+        "usv_final_distance_to_target_m": final_distance,
         "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95,
         # after the find (docs/mission.md, "Recovery"): the AUV keeping the spot, coming up, and the USV beside it
         "recovered": recovered, "auv_hold_excursion_m": rec["auv_hold_excursion_m"],
@@ -684,12 +708,18 @@ def _summary(out, m, scenario):
         "",
         "**%s** (%s) - %s" % ("SUCCESS" if m["success"] else "FAILED", m["outcome"], m["reason"]), "",
         "| figure | this run | thesis field test |", "| --- | --- | --- |",
-        "| USV cross-track RMSE | %s | %.4f m (Table 5.1) |" % (_fmt(m["usv_rmse_m"], " m"), th["usv_rmse_m"]),
-        "| USV cross-track SD | %s | %.4f m |" % (_fmt(m["usv_sd_m"], " m"), th["usv_sd_m"]),
-        "| USV cross-track MAE | %s | %.4f m |" % (_fmt(m["usv_mae_m"], " m"), th["usv_mae_m"]),
-        "| AUV cross-track RMSE (from the first waypoint) | %s | %.2f m (Table 4.4, Girona500) |" % (
-            _fmt(m["auv_rmse_m"], " m"), th["auv_rmse_m"]),
-        "| AUV cross-track RMSE on its approach (leg 1) | %s | |" % _fmt(m["auv_approach_rmse_m"], " m"),
+        "| USV cross-track RMSE, on its GPS estimate (guidance's own) | %s | %.4f m (Table 5.1) |" % (
+            _fmt(m["usv_xte_est_rmse_m"], " m"), th["usv_xte_est_rmse_m"]),
+        "| USV cross-track SD, on its estimate | %s | %.4f m |" % (_fmt(m["usv_xte_est_sd_m"], " m"), th["usv_xte_est_sd_m"]),
+        "| USV cross-track MAE, on its estimate | %s | %.4f m |" % (
+            _fmt(m["usv_xte_est_mae_m"], " m"), th["usv_xte_est_mae_m"]),
+        "| USV cross-track RMSE, true position | %s | |" % _fmt(m["usv_xte_true_rmse_m"], " m"),
+        "| AUV cross-track RMSE, true position, from the first waypoint | %s | %.2f m (Table 4.4, Girona500) |" % (
+            _fmt(m["auv_xte_true_rmse_m"], " m"), th["auv_xte_true_rmse_m"]),
+        "| AUV cross-track RMSE, true position, on its approach (leg 1) | %s | |" % _fmt(
+            m["auv_approach_xte_true_rmse_m"], " m"),
+        "| AUV cross-track RMSE on its estimate (guidance's own), from the first waypoint | %s | |" % _fmt(
+            m["auv_xte_est_rmse_m"], " m"),
         "| detection time | %s | |" % _fmt(m["detection_time_s"], " s"),
         "| target localisation error | %s | |" % _fmt(m["target_error_m"], " m"),
         "| minimum clearance, hull to obstacles | %s | |" % _fmt(m["min_clearance_m"], " m"),
@@ -698,7 +728,8 @@ def _summary(out, m, scenario):
         "| USBL fixes | %d received, %d rejected | |" % (m["usbl_fixes_received"], m["usbl_fixes_rejected"]),
         "| USV final distance to the true target | %s | |" % _fmt(m["usv_final_distance_to_target_m"], " m"),
         "| USV drift while waiting for the target | %s | |" % _fmt(m["usv_wait_drift_m"], " m"),
-        "| USV hold on station (target, recovery), 95th percentile | %s | |" % _fmt(m["usv_hold_p95_m"], " m"),
+        "| USV hold on station (target, recovery), 95th percentile, from on station (within station_radius) | %s | |"
+        % _fmt(m["usv_hold_p95_m"], " m"),
         "| AUV hold at the find, largest excursion | %s | |" % _fmt(m["auv_hold_excursion_m"], " m"),
         "| AUV drift while ascending | %s | |" % _fmt(m["auv_ascent_drift_m"], " m"),
         "| USV hull to the AUV at the end (least near the surface) | %s (%s) | |" % (

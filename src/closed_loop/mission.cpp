@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "offshore_gnc/common/validate.h"
@@ -27,6 +28,7 @@ void record(VehicleRecord& r, const VehicleState& truth, long step, const guidan
       const Eigen::Vector2d a = path[k - 1].head<2>(), d = path[k].head<2>() - a, p = truth.position.head<2>() - a;
       if (d.norm() > 0.0) e_truth = (d.x() * p.y() - d.y() * p.x()) / d.norm();
     }
+    r.xte_truth.emplace_back(truth.t, e_truth);
     if (k >= 2) {
       r.xte_tracking.emplace_back(truth.t, g->los.cross_track_error);
       r.xte_tracking_truth.emplace_back(truth.t, e_truth);
@@ -49,11 +51,14 @@ double percentile(std::vector<double> v, double q) {
 guidance::TrackingMetrics metricsOf(const std::vector<Eigen::Vector2d>& samples) {
   std::vector<double> e;
   for (const auto& s : samples) e.push_back(s.y());
-  return guidance::computeMetrics(e);  // NaN samples (no leg) skipped
+  guidance::TrackingMetrics m = guidance::computeMetrics(e);  // NaN samples (no leg) skipped
+  if (m.samples == 0) m.rmse = m.sd = m.mae = m.max_abs = m.mean = kNaN;  // nothing measured: unknown, not zero
+  return m;
 }
 
 void finish(VehicleRecord& r, const std::string& phase) {
   r.metrics = metricsOf(r.xte);
+  r.metrics_truth = metricsOf(r.xte_truth);
   r.tracking = metricsOf(r.xte_tracking);
   r.tracking_truth = metricsOf(r.xte_tracking_truth);
   r.approach_truth = metricsOf(r.xte_approach_truth);
@@ -120,6 +125,10 @@ MissionResult runMission(const MissionConfig& cfg) {
   res.reason = "simulated time limit reached";
   res.min_clearance_m = res.usv_auv_min_clearance_m = std::numeric_limits<double>::infinity();
   res.auv_hold_excursion_m = res.auv_ascent_drift_m = kNaN;
+  std::pair<double, std::string> closest;  // when the hull came closest to what
+  double auv_closest_t = kNaN;              // and to the AUV near the surface
+  // where the USV held at the target: its true position at the last step of ARRIVED (it then leaves for the AUV)
+  std::optional<Eigen::Vector2d> usv_station_end;
   const sim::Scenario::Mission& judge = cfg.scenario.mission;
   const Fault* geofence = nullptr;
   for (const auto& f : cfg.link_faults.faults())
@@ -186,12 +195,18 @@ MissionResult runMission(const MissionConfig& cfg) {
     const VehicleState& ax = auv.truth();
     if (step % 5 == 0) {  // the hull against every true shape, a fault's obstacle included, and the AUV, at 20 Hz
       const auto& fault = usv.simulation().faultObstacle();
-      res.min_clearance_m = std::min(res.min_clearance_m,
-                                     sim::hullClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, cfg.scenario.world,
-                                                        fault ? std::vector<sim::Vessel>{*fault} : std::vector<sim::Vessel>{}));
+      std::string what;
+      const double c = sim::hullClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, cfg.scenario.world,
+                                          fault ? std::vector<sim::Vessel>{*fault} : std::vector<sim::Vessel>{}, &what);
+      if (c < res.min_clearance_m) {
+        res.min_clearance_m = c;
+        closest = {t, what};
+      }
       res.recovery_distance_m = auvClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, ax.position.head<2>(), cfg.auv.length);
-      if (ax.position.z() < kAuvContactDepth)
-        res.usv_auv_min_clearance_m = std::min(res.usv_auv_min_clearance_m, res.recovery_distance_m);
+      if (ax.position.z() < kAuvContactDepth && res.recovery_distance_m < res.usv_auv_min_clearance_m) {
+        res.usv_auv_min_clearance_m = res.recovery_distance_m;
+        auv_closest_t = t;
+      }
     }
     if (step % 5 == 0 && usv_alive) {
       const VehicleState& x = usv.truth();
@@ -233,6 +248,7 @@ MissionResult runMission(const MissionConfig& cfg) {
     // the USV on station: at the target, and at its recovery point
     const mission::UsvMission& um = usv.mission();
     held = held || um.arrived();
+    if (um.phase() == mission::UsvPhase::Arrived) usv_station_end = usv_ne;
     const auto ph = um.phase();
     if ((ph == mission::UsvPhase::Arrived || ph == mission::UsvPhase::Recovery || ph == mission::UsvPhase::Recovered) &&
         t >= um.onStationSince()) {
@@ -280,9 +296,10 @@ MissionResult runMission(const MissionConfig& cfg) {
     for (const auto& tt : targets) best = std::min(best, (res.target->head<2>() - tt.position.head<2>()).norm());
     res.target_error_m = best;
   }
-  if (!targets.empty()) {
+  if (!targets.empty()) {  // where it held at the target, else where it is now
+    const Eigen::Vector2d at = usv_station_end ? *usv_station_end : Eigen::Vector2d(usv.truth().position.head<2>());
     double best = std::numeric_limits<double>::infinity();
-    for (const auto& tt : targets) best = std::min(best, (usv.truth().position.head<2>() - tt.position.head<2>()).norm());
+    for (const auto& tt : targets) best = std::min(best, (at - tt.position.head<2>()).norm());
     res.usv_final_distance_to_target_m = best;
   }
   res.detection_time_s = am.detectionTime();
@@ -304,6 +321,8 @@ MissionResult runMission(const MissionConfig& cfg) {
   f.target_reported = res.target.has_value();
   f.target_error_m = res.target_error_m;
   f.target_tolerance_m = judge.target_tolerance;
+  f.final_distance_m = res.usv_final_distance_to_target_m;
+  f.station_tolerance_m = cfg.usv.mission.standoff + judge.target_tolerance;
   f.min_clearance_m = std::isnan(res.min_clearance_m) ? std::numeric_limits<double>::infinity() : res.min_clearance_m;
   f.auv_clearance_m = std::isnan(res.usv_auv_min_clearance_m) ? std::numeric_limits<double>::infinity()
                                                               : res.usv_auv_min_clearance_m;
@@ -311,6 +330,14 @@ MissionResult runMission(const MissionConfig& cfg) {
   for (const auto* log : {&res.usv_safety, &res.auv_safety})
     for (const auto& tr : *log) f.safety_stop |= tr.to_active && tr.rule != "manual" && tr.action >= safety::Action::kHold;
   res.outcome = classify(f);
+  if (res.outcome == Outcome::kCollision) {
+    const bool auv_hit = !std::isnan(res.usv_auv_min_clearance_m) && !(res.min_clearance_m <= res.usv_auv_min_clearance_m);
+    const auto hit = auv_hit ? std::make_pair(auv_closest_t, std::string("the AUV")) : closest;
+    char b[160];
+    std::snprintf(b, sizeof b, "the hull touched %s at %.1f s (clearance %.2f m); ", hit.second.c_str(), hit.first,
+                  auv_hit ? res.usv_auv_min_clearance_m : res.min_clearance_m);
+    res.reason = b + res.reason;
+  }
   res.success = res.outcome == Outcome::kSuccess;
   res.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   return res;

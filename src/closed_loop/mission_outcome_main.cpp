@@ -4,11 +4,10 @@
 // AUV a disc of its config's length, counted within kAuvContactDepth of the surface), and the facts only the job
 // knows.
 //   mission_outcome --scenario FILE --usv-track CSV [--auv-track CSV --auv-model M] [--config DIR] [--held 0|1]
-//                   [--recovered 0|1] [--auv-no-target 0|1] [--target-error M] [--died 0|1] [--safety-stop 0|1]
+//                   [--recovered 0|1] [--auv-no-target 0|1] [--target-error M] [--final-distance M] [--died 0|1]
+//                   [--safety-stop 0|1]
 // Prints {"outcome": "...", "min_clearance_m": x, "usv_auv_min_clearance_m": x, "recovery_distance_m": x} (null when
 // there is nothing to measure; the last at the end of the tracks); exit 2 on bad input.
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -21,6 +20,7 @@
 #include "offshore_gnc/closed_loop/outcome.h"
 #include "offshore_gnc/closed_loop/stacks.h"
 #include "offshore_gnc/common/param_yaml.h"
+#include "offshore_gnc/mission/mission.h"
 #include "offshore_gnc/sim/contact.h"
 #include "offshore_gnc/sim/scenario.h"
 
@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
       else if (a == "--recovered") f.recovered = number(a, v) != 0.0;
       else if (a == "--auv-no-target") f.auv_no_target = number(a, v) != 0.0;
       else if (a == "--target-error") f.target_error_m = number(a, v), f.target_reported = !std::isnan(f.target_error_m);
+      else if (a == "--final-distance") f.final_distance_m = number(a, v);
       else if (a == "--died") f.stack_died = number(a, v) != 0.0;
       else if (a == "--safety-stop") f.safety_stop = number(a, v) != 0.0;
       else throw ConfigError("unknown option " + a);
@@ -84,14 +85,18 @@ int main(int argc, char** argv) {
     const sim::Scenario sc = sim::loadScenario(scenario);
     f.expect_target = sc.mission.expect_target;
     f.target_tolerance_m = sc.mission.target_tolerance;
+    mission::UsvMissionParams usv_mission;  // its stand-off: how far short of the target the USV holds
+    const std::string mission_file = config + "/mission/usv.yaml";
+    readParamsYaml(loadYamlFile(mission_file), mission::UsvMissionParams::table(), usv_mission, mission_file);
+    f.station_tolerance_m = usv_mission.standoff + sc.mission.target_tolerance;
     sim::HullFootprint hull;
     const std::string vehicle = config + "/usv.yaml";
-    readParamsYaml(YAML::LoadFile(vehicle), sim::HullFootprint::table(), hull, vehicle);
+    readParamsYaml(loadYamlFile(vehicle), sim::HullFootprint::table(), hull, vehicle);
     hull.validate();
     const auto usv = readTrack(track);
     for (const auto& r : usv) f.min_clearance_m = std::min(f.min_clearance_m, sim::hullClearance(hull, {r[1], r[2]}, r[3], sc.world));
     // the hull against the AUV: each USV sample with the AUV's nearest in time (both bags on the one simulated clock)
-    double final_distance = NAN;
+    double recovery_distance = NAN;
     if (!auv_track.empty()) {
       const double length = closed_loop::auvLength(config, auv_model);
       const auto auv = readTrack(auv_track);
@@ -101,12 +106,12 @@ int main(int argc, char** argv) {
         if (it == auv.end() || std::abs((*it)[0] - r[0]) > 0.25) continue;
         const double c = closed_loop::auvClearance(hull, {r[1], r[2]}, r[3], {(*it)[1], (*it)[2]}, length);
         if ((*it)[3] < closed_loop::kAuvContactDepth) f.auv_clearance_m = std::min(f.auv_clearance_m, c);
-        final_distance = c;
+        recovery_distance = c;
       }
     }
     std::printf("{\"outcome\": \"%s\", \"min_clearance_m\": %s, \"usv_auv_min_clearance_m\": %s, \"recovery_distance_m\": %s}\n",
                 closed_loop::toString(closed_loop::classify(f)), json(f.min_clearance_m).c_str(),
-                json(f.auv_clearance_m).c_str(), json(final_distance).c_str());
+                json(f.auv_clearance_m).c_str(), json(recovery_distance).c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mission_outcome: %s\n", e.what());

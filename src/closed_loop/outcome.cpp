@@ -11,6 +11,7 @@ const char* toString(Outcome o) {
     case Outcome::kCollision: return "collision";
     case Outcome::kMissedTarget: return "missed_target";
     case Outcome::kWrongTarget: return "wrong_target";
+    case Outcome::kOffStation: return "off_station";
     case Outcome::kAuvAdrift: return "auv_adrift";
     case Outcome::kSafetyAbort: return "safety_abort";
     case Outcome::kTimeout: return "timeout";
@@ -25,6 +26,8 @@ Outcome classify(const OutcomeFacts& f) {
   // a report where nothing lies, or farther than the tolerance: the USV was sent to the wrong place
   if (f.target_reported && (!f.expect_target || !(f.target_error_m <= f.target_tolerance_m))) return Outcome::kWrongTarget;
   if (f.expect_target && f.auv_no_target) return Outcome::kMissedTarget;
+  // the USV held, but where the true target is not (a safety hold short of it became its station)
+  if (f.expect_target && f.held && !(f.final_distance_m <= f.station_tolerance_m)) return Outcome::kOffStation;
   if (f.recovered && (f.expect_target ? f.held : f.auv_no_target)) return Outcome::kSuccess;
   // the search is over (the AUV then comes up) but nobody picked the AUV up: a vehicle left in the water
   if ((f.target_reported || f.auv_no_target) && !f.recovered) return Outcome::kAuvAdrift;

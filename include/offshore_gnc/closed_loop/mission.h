@@ -4,7 +4,7 @@
 // across as the relay would, until the USV reports the AUV recovered (docs/mission.md: it holds beside the surfaced
 // AUV, both stationary), the time limit, or `after_kill` seconds after a stack was killed. The same scenario, configuration and seeds as ./scripts/mission, with the figures its report gives
 // (metrics over the same samples: guidance's cross-track error in path following; the AUV's from the first
-// waypoint reached and on the truth, as the report's auv_rmse_m). The AUV navigates as in the ROS mission: on USBL
+// waypoint reached and on the truth, as the report's auv_xte_true_rmse_m). The AUV navigates as in the ROS mission: on USBL
 // fixes placed by the USV's GPS and heading relayed over the radio (closed_loop/usbl_navigation.h); the radio
 // delays what crosses it and loses best-effort messages as configured.
 #include <Eigen/Core>
@@ -47,13 +47,14 @@ MissionConfig loadMission(const std::string& config_dir, const std::string& scen
 struct VehicleRecord {
   std::vector<Eigen::Vector4d> truth;                 // (t, north, east, down) at 20 Hz, as the bags record it
   std::vector<Eigen::Vector2d> xte;                   // (t, e) of guidance's samples in path following
+  std::vector<Eigen::Vector2d> xte_truth;             // the same samples on the truth (distance from the active leg)
   // The same samples split as the report splits an AUV's (thesis Table 4.4 leaves the approach out): from the
   // first waypoint reached (active leg 2 on) on guidance's estimate and on the truth (the true position's
   // distance from the active leg), and the approach before it on the truth.
   std::vector<Eigen::Vector2d> xte_tracking, xte_tracking_truth, xte_approach_truth;
   std::vector<Eigen::Vector3d> planned;               // the longest path guidance planned
   std::vector<guidance::SbbBox> boxes;                // the last safety boxes
-  guidance::TrackingMetrics metrics;                  // over xte
+  guidance::TrackingMetrics metrics, metrics_truth;   // over xte, xte_truth
   guidance::TrackingMetrics tracking, tracking_truth, approach_truth;  // over the split samples
   std::string final_phase;
   std::vector<std::pair<double, std::string>> phases;  // (t, phase) at each change of the mission's phase
@@ -69,6 +70,8 @@ struct MissionResult {
   double detection_time_s = 0.0;          // from the start of the coverage (NaN without a detection)
   double min_clearance_m = 0.0;           // the USV hull's closest approach to an obstacle (sim/contact.h; <= 0:
                                           // contact; NaN without obstacles)
+  // the USV's true distance from the nearest true target where it held there (its last moment in ARRIVED, before it
+  // left for the recovery), else where it ended (NaN without a target)
   double usv_final_distance_to_target_m = 0.0;
   // Station keeping (docs/mission.md): the largest distance from where the USV started waiting until the target
   // came, and the 95th percentile distance from its hold point over the hold at the target (NaN without one).
