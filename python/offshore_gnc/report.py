@@ -195,7 +195,8 @@ def _phase_at(status, t):
 def recovery_figures(auv_track, auv_status, usv_status):
     """docs/mission.md, "Recovery" (the ROS-free mission computes the same): the AUV's largest 3-D distance from its
     hold point from on station there until the ascent (auv_hold_excursion_m), its largest horizontal distance from the
-    surfacing point during the ascent once it rose RISEN_M (auv_ascent_drift_m), and when the search ended, the ascent
+    surfacing point during the ascent once it rose RISEN_M (auv_ascent_drift_m), its largest horizontal distance from
+    the point it holds at the surface while there (auv_surface_excursion_m), and when the search ended, the ascent
     began, the AUV surfaced and the USV reported RECOVERED (absolute simulated times, NaN: never), each read from the
     mission statuses [(t, MissionStatus)] at their stamps; auv_track [(t, north, east, down)]."""
     nan = float("nan")
@@ -205,7 +206,7 @@ def recovery_figures(auv_track, auv_status, usv_status):
     fig = {"found_at_s": first(a, ("TARGET_FOUND", "NO_TARGET")), "ascent_at_s": first(a, ("ASCENT",)),
            "surfaced_at_s": first(a, ("SURFACED", "RECOVERED")), "recovered_at_s": first(u, ("RECOVERED",))}
     fig["find_to_recovery_s"] = fig["recovered_at_s"] - fig["found_at_s"]
-    hold, drift, start_depth = [], [], None
+    hold, drift, surface, start_depth = [], [], [], None
     for t, n, e, d in auv_track:
         m = _phase_at(a, t)
         if m is None:
@@ -217,8 +218,11 @@ def recovery_figures(auv_track, auv_status, usv_status):
             start_depth = d if start_depth is None else start_depth
             if d < start_depth - RISEN_M:
                 drift.append(math.hypot(n - p.x, e - p.y))
+        if m.phase in ("SURFACED", "RECOVERED"):
+            surface.append(math.hypot(n - p.x, e - p.y))
     fig["auv_hold_excursion_m"] = max(hold) if hold else nan
     fig["auv_ascent_drift_m"] = max(drift) if drift else nan
+    fig["auv_surface_excursion_m"] = max(surface) if surface else nan
     return fig
 
 
@@ -548,7 +552,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95,
         # after the find (docs/mission.md, "Recovery"): the AUV keeping the spot, coming up, and the USV beside it
         "recovered": recovered, "auv_hold_excursion_m": rec["auv_hold_excursion_m"],
-        "auv_ascent_drift_m": rec["auv_ascent_drift_m"],
+        "auv_ascent_drift_m": rec["auv_ascent_drift_m"], "auv_surface_excursion_m": rec["auv_surface_excursion_m"],
         "recovery_distance_m": recovery_distance,  # the USV hull to the AUV at the end
         "usv_auv_min_clearance_m": auv_clearance,  # the least of that while the AUV was near the surface
         "find_to_recovery_s": rec["find_to_recovery_s"],
@@ -732,6 +736,7 @@ def _summary(out, m, scenario):
         % _fmt(m["usv_hold_p95_m"], " m"),
         "| AUV hold at the find, largest excursion | %s | |" % _fmt(m["auv_hold_excursion_m"], " m"),
         "| AUV drift while ascending | %s | |" % _fmt(m["auv_ascent_drift_m"], " m"),
+        "| AUV at the surface, largest distance from its point | %s | |" % _fmt(m["auv_surface_excursion_m"], " m"),
         "| USV hull to the AUV at the end (least near the surface) | %s (%s) | |" % (
             _fmt(m["recovery_distance_m"], " m"), _fmt(m["usv_auv_min_clearance_m"], " m")),
         "| search's end, ascent, at the surface, RECOVERED (simulated time) | %s, %s, %s, %s | |" % (

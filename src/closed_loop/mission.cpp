@@ -124,7 +124,7 @@ MissionResult runMission(const MissionConfig& cfg) {
   res.usv_wait_drift_m = kNaN;
   res.reason = "simulated time limit reached";
   res.min_clearance_m = res.usv_auv_min_clearance_m = std::numeric_limits<double>::infinity();
-  res.auv_hold_excursion_m = res.auv_ascent_drift_m = kNaN;
+  res.auv_hold_excursion_m = res.auv_ascent_drift_m = res.auv_surface_excursion_m = kNaN;
   std::pair<double, std::string> closest;  // when the hull came closest to what
   double auv_closest_t = kNaN;              // and to the AUV near the surface
   // where the USV held at the target: its true position at the last step of ARRIVED (it then leaves for the AUV)
@@ -245,6 +245,9 @@ MissionResult runMission(const MissionConfig& cfg) {
       if (ax.position.z() < ascent_depth - kRisen)
         keepMax(res.auv_ascent_drift_m, (ax.position.head<2>() - am.holdPoint().head<2>()).norm());
     }
+    // holding at the surface (waiting for the USV, or beside it): from the point it holds there
+    if (am.phase() == mission::AuvPhase::Surfaced || am.phase() == mission::AuvPhase::Recovered)
+      keepMax(res.auv_surface_excursion_m, (ax.position.head<2>() - am.holdPoint().head<2>()).norm());
     // the USV on station: at the target, and at its recovery point
     const mission::UsvMission& um = usv.mission();
     held = held || um.arrived();

@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
         "\"usv_final_phase\": %s, \"auv_final_phase\": %s, \"usv_safety\": %s, \"auv_safety\": %s, "
         "\"auv_nav_source\": %s, \"auv_nav_rmse_m\": %s, \"auv_nav_max_m\": %s, \"usbl_fixes_received\": %zu, "
         "\"usbl_fixes_rejected\": %zu, \"relay_lost\": %zu, \"recovered\": %s, \"auv_hold_excursion_m\": %s, "
-        "\"auv_ascent_drift_m\": %s, \"recovery_distance_m\": %s, \"usv_auv_min_clearance_m\": %s, "
+        "\"auv_ascent_drift_m\": %s, \"auv_surface_excursion_m\": %s, \"recovery_distance_m\": %s, \"usv_auv_min_clearance_m\": %s, "
         "\"find_to_recovery_s\": %s, \"found_at_s\": %s, \"ascent_at_s\": %s, \"surfaced_at_s\": %s, "
         "\"recovered_at_s\": %s, \"stacks_died\": %s, \"sim_time_s\": %s, \"wall_time_s\": %s}\n",
         r.success ? "true" : "false", str(closed_loop::toString(r.outcome)).c_str(), str(r.reason).c_str(),
@@ -168,7 +168,7 @@ int main(int argc, char** argv) {
         activations(r.usv_safety).c_str(), activations(r.auv_safety).c_str(), str(navigation).c_str(),
         num(r.auv_nav_rmse_m).c_str(), num(r.auv_nav_max_m).c_str(), r.usbl_fixes_received, r.usbl_fixes_rejected,
         r.relay_lost, r.recovered ? "true" : "false", num(r.auv_hold_excursion_m).c_str(),
-        num(r.auv_ascent_drift_m).c_str(), num(r.recovery_distance_m).c_str(), num(r.usv_auv_min_clearance_m).c_str(),
+        num(r.auv_ascent_drift_m).c_str(), num(r.auv_surface_excursion_m).c_str(), num(r.recovery_distance_m).c_str(), num(r.usv_auv_min_clearance_m).c_str(),
         num(r.find_to_recovery_s).c_str(), num(r.found_at_s).c_str(), num(r.ascent_at_s).c_str(),
         num(r.surfaced_at_s).c_str(), num(r.recovered_at_s).c_str(),
         r.stack_died.empty() ? "{}" : ("{" + str(r.stack_died) + ": " + num(cfg.kill_at) + "}").c_str(),

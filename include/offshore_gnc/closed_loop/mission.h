@@ -89,6 +89,7 @@ struct MissionResult {
   std::string stack_died;                  // the killed stack ("" none)
   double auv_hold_excursion_m = 0.0;       // the AUV's true position from its hold point (3-D), on station until the ascent
   double auv_ascent_drift_m = 0.0;         // horizontal, from the surfacing point, once it rose 0.3 m until at the surface
+  double auv_surface_excursion_m = 0.0;    // horizontal, from the point it holds at the surface, while there (NaN never)
   double recovery_distance_m = 0.0;        // the USV hull to the AUV (a disc of its length) at the end
   double usv_auv_min_clearance_m = 0.0;    // the least of that while the AUV was within kAuvContactDepth of the surface
   double find_to_recovery_s = 0.0;         // from the find (or the search's end) to RECOVERED
