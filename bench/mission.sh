@@ -4,7 +4,7 @@
 # (--rate 0) and both are timed on the simulated run alone (the ROS job from its shared clock's start: masters and
 # stacks' start-up excluded). N runs each (ROS-free seeds 1..N; the ROS job's sensor noise comes from its launch
 # files' seeds); medians compared. Last line: one JSON object with each figure of both, their ratio (ROS-free / ROS)
-# and the speed-up of the simulated run.
+# and the speed-up of the simulated run; each mission runs to the AUV's recovery (docs/mission.md).
 set -euo pipefail
 scenario="$REPO/config/scenarios/pyhajarvi.yaml"
 model=girona500
@@ -39,12 +39,15 @@ def med(rs, k):
     return statistics.median(v) if v else None
 out = {"runs": runs}
 for k in ("usv_xte_est_rmse_m", "auv_xte_true_rmse_m", "auv_nav_rmse_m", "target_error_m", "usv_hold_p95_m", "usv_wait_drift_m",
-          "min_clearance_m", "sim_time_s"):
+          "min_clearance_m", "auv_hold_excursion_m", "auv_ascent_drift_m", "recovery_distance_m", "usv_auv_min_clearance_m",
+          "find_to_recovery_s", "sim_time_s"):
     a, b = med(free, k), med(ros, k)
     out[k + "_rosfree"], out[k + "_ros"] = a, b
     out[k + "_ratio"] = round(a / b, 3) if a is not None and b else None
 out["success_rosfree"] = sum(r["outcome"] == "success" for r in free)
 out["success_ros"] = sum(r["outcome"] == "success" for r in ros)
+out["recovered_rosfree"] = sum(bool(r.get("recovered")) for r in free)
+out["recovered_ros"] = sum(bool(r.get("recovered")) for r in ros)
 out["rosfree_run_s"] = med(free, "wall_time_s")
 out["ros_run_s"] = med(ros, "run_wall_time_s")
 out["rosfree_realtime_x"] = round(out["sim_time_s_rosfree"] / out["rosfree_run_s"], 1)

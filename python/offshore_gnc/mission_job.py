@@ -3,8 +3,9 @@
 
 Starts two real masters, the USV and AUV stacks (simulators, perception, guidance, control, mission, relay,
 rosbag recording) from launch/usv.launch and launch/auv.launch, follows both missions' progress (phase,
-simulated time, distance to go) until the USV holds position at the target (success), the AUV ends its
-search without a target, a stack dies, or the simulated-time limit passes; then writes the report folder
+simulated time, distance to go) until the USV reports the AUV recovered (RECOVERED: after the find the AUV came up
+and the USV holds beside it, both stationary; docs/mission.md), a stack dies, or the simulated-time limit passes;
+then writes the report folder
 (metrics.json, summary.md, map.png, cross_track.png, the rosbags, logs, rviz_usv.png with --screenshot) and
 prints where it is. Exit status 0 only if the mission ended as the scenario expects.
 
@@ -356,9 +357,7 @@ def after_death(died, launches, status, watch_s):
 def run(a):
     sc = scenario_check.load(a.scenario)  # refuses a bad scenario before anything starts
     judged = scenario_check.mission(a.scenario)  # how the run is judged (the scenario's mission section)
-    expect = judged["expect"]
     max_sim = a.max_sim_time or judged["max_sim_time"]
-    hold_time = judged["hold_time"]  # on station at the target this long before success
     name = sc.get("name", os.path.splitext(os.path.basename(a.scenario))[0])
     out = os.path.abspath(a.out or os.path.join(REPO, "reports", "%s-%s" % (
         name, datetime.datetime.now().strftime("%Y%m%d-%H%M%S"))))
@@ -453,21 +452,14 @@ def run(a):
                 if outcome:
                     break
                 continue
-            # success: on station at the target (the USV mission says since when) for hold_time
-            on_station = u.get("on_station_since")
-            if expect == "target_reached" and u.get("finished") and u.get("success") and on_station is not None \
-                    and sim_t >= on_station + hold_time:
-                outcome = {"held": True, "reason": "USV holds position at the target: " + u.get("detail", "")}
-                break
-            if av.get("phase") == "NO_TARGET":
-                outcome = {"reason": "AUV finished its coverage without a detection; USV %s" % u.get("phase")}
+            # the end: the USV reports the AUV recovered (with or without a target: the scenario's expectation and
+            # the report judge the rest)
+            if u.get("phase") == "RECOVERED" and u.get("finished"):
+                outcome = {"recovered": True, "reason": "the AUV is recovered: " + u.get("detail", "")}
                 break
             if sim_t > max_sim:
-                outcome = {"reason": "simulated time limit %.0f s reached (AUV %s, USV %s)" % (
-                    max_sim, av.get("phase"), u.get("phase"))}
-                if u.get("finished") and u.get("success") and on_station is None:
-                    outcome["reason"] += ": the USV arrived but never came on station (within the mission's " \
-                                         "station_radius of its station point)"
+                outcome = {"reason": "simulated time limit %.0f s reached (AUV %s: %s; USV %s: %s)" % (
+                    max_sim, av.get("phase"), av.get("detail", ""), u.get("phase"), u.get("detail", ""))}
                 break
             if time.time() - clock_t0 > 30 and sim_t == 0.0:
                 outcome = {"reason": "no simulated time after 30 s: simulators not running"}
@@ -475,6 +467,7 @@ def run(a):
         if shots:
             outcome["rviz_pixels"] = shots.close(u.get("phase"))
         outcome["sim_time_s"] = round(sim_t, 1)
+        outcome["auv_model"] = a.auv_model  # its length, for the hull's clearance to it
         outcome["run_wall_s"] = round(time.time() - clock_t0, 2)  # the simulated run alone, start-up excluded
         print(fmt_progress(u, av), flush=True)
         if channel:
@@ -505,8 +498,9 @@ def run(a):
                      wall_time_s=round(wall, 2), outcome=outcome, planned_faults=planned)
     print("[mission] %s: %s" % ("SUCCESS" if m["success"] else "FAILED (%s)" % m["outcome"], outcome["reason"]))
     print("[mission] metrics: " + ", ".join("%s=%s" % (k, m[k]) for k in (
-        "outcome", "usv_xte_est_rmse_m", "auv_xte_true_rmse_m", "target_error_m", "min_clearance_m", "auv_nav_source", "auv_nav_rmse_m",
-        "usbl_fixes_received", "usbl_fixes_rejected", "sim_time_s", "wall_time_s")))
+        "outcome", "usv_xte_est_rmse_m", "auv_xte_true_rmse_m", "target_error_m", "min_clearance_m", "auv_nav_source",
+        "auv_nav_rmse_m", "usbl_fixes_received", "usbl_fixes_rejected", "auv_hold_excursion_m", "auv_ascent_drift_m",
+        "recovery_distance_m", "usv_auv_min_clearance_m", "find_to_recovery_s", "sim_time_s", "wall_time_s")))
     print("[mission] report: %s" % out)
     return 0 if m["success"] else 1
 

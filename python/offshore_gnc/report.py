@@ -45,17 +45,25 @@ def split_tracking(status_msgs, path=None, truth=None):
     """Cross-track figures of a vehicle's GuidanceStatus samples: all of them, and split at the first waypoint
     reached: the approach (leg 1, from wherever the vehicle was to the path's first switch; thesis Table 4.4 leaves
     it out) and the tracking after it (legs 2 on). Each on the guidance's own error (on its navigation estimate) and,
-    given the followed path [(north, east)] and the true track [(t, north, east, ...)], on the truth: the true
-    position's distance from the active leg. All through the same C++ tool as the bag figures, fed CSV files."""
+    given the followed path [(north, east)] (or the paths in time, [(t, path)]: each sample's the latest at its time)
+    and the true track [(t, north, east, ...)], on the truth: the true position's distance from the active leg. All
+    through the same C++ tool as the bag figures, fed CSV files."""
     import tempfile
+    timed = bool(path) and isinstance(path[0][1], list)
+    times = [x[0] for x in path] if timed else []
     truth_xte = []
     for t, m in status_msgs:
         k = m.active_leg
+        if timed:
+            i = bisect.bisect_right(times, t)
+            path_now = path[i - 1][1] if i else None
+        else:
+            path_now = path
         p = _interpolate(truth or [], t)
-        if not path or p is None or not 1 <= k < len(path):
+        if not path_now or p is None or not 1 <= k < len(path_now):
             truth_xte.append(float("nan"))
             continue
-        (an, ae), (bn, be) = path[k - 1], path[k]
+        (an, ae), (bn, be) = path_now[k - 1], path_now[k]
         length = math.hypot(bn - an, be - ae)
         truth_xte.append(((bn - an) * (p[1] - ae) - (be - ae) * (p[0] - an)) / length if length > 0 else float("nan"))
     out = {}
@@ -132,30 +140,90 @@ def path_ned(path_msg):
     return pts
 
 
-def judge(scenario, usv_odom, facts):
-    """The run's outcome and the USV hull's minimum clearance, by the ROS-free mission's own code (the C++ tool
-    `mission_outcome`: the hull of config/usv.yaml, turning with the boat, against the scenario's true shapes; the
-    classes of closed_loop/outcome.h). usv_odom: the USV's ground truth [(t, Odometry)]; facts: held, auv_no_target,
-    target_error (NaN: none reported), died, safety_stop. Returns (outcome, min_clearance_m: NaN without obstacles)."""
+def judge(scenario, usv_odom, facts, auv_track=(), auv_model="girona500"):
+    """The run's outcome and the USV hull's clearances, by the ROS-free mission's own code (the C++ tool
+    `mission_outcome`: the hull of config/usv.yaml, turning with the boat, against the scenario's true shapes and the
+    AUV near the surface; the classes of closed_loop/outcome.h). usv_odom: the USV's ground truth [(t, Odometry)];
+    auv_track: the AUV's [(t, north, east, down)]; facts: held, recovered, auv_no_target, target_error (NaN: none
+    reported), died, safety_stop. Returns (outcome, min_clearance_m, usv_auv_min_clearance_m, recovery_distance_m),
+    NaN for what could not be measured."""
     import tempfile
-    with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
-        f.write("t,north,east,yaw\n")
-        for t, m in usv_odom:
-            q = m.pose.pose.orientation
-            yaw_enu = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-            f.write("%.3f,%.4f,%.4f,%.5f\n" % (t, m.pose.pose.position.y, m.pose.pose.position.x, math.pi / 2 - yaw_enu))
-        path = f.name
+    files = []
     try:
-        args = [tools.path("mission_outcome"), "--scenario", scenario, "--usv-track", path]
+        with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
+            files.append(f.name)
+            f.write("t,north,east,yaw\n")
+            for t, m in usv_odom:
+                q = m.pose.pose.orientation
+                yaw_enu = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+                f.write("%.3f,%.4f,%.4f,%.5f\n" % (t, m.pose.pose.position.y, m.pose.pose.position.x,
+                                                   math.pi / 2 - yaw_enu))
+        args = [tools.path("mission_outcome"), "--scenario", scenario, "--usv-track", files[0]]
+        if auv_track:
+            with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
+                files.append(f.name)
+                f.write("t,north,east,down\n")
+                for t, n, e, d in sorted(auv_track):
+                    f.write("%.3f,%.4f,%.4f,%.4f\n" % (t, n, e, d))
+            args += ["--auv-track", files[1], "--auv-model", auv_model]
         for k, v in facts.items():
             args += ["--" + k.replace("_", "-"), "nan" if isinstance(v, float) and v != v else str(int(v) if isinstance(v, bool) else v)]
         r = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     finally:
-        os.remove(path)
+        for name in files:
+            os.remove(name)
     if r.returncode != 0:
         raise RuntimeError("mission_outcome failed: " + r.stderr.strip())
     d = json.loads(r.stdout.strip().splitlines()[-1])
-    return d["outcome"], (float("nan") if d["min_clearance_m"] is None else d["min_clearance_m"])
+    nan = float("nan")
+    return (d["outcome"], nan if d["min_clearance_m"] is None else d["min_clearance_m"],
+            nan if d["usv_auv_min_clearance_m"] is None else d["usv_auv_min_clearance_m"],
+            nan if d["recovery_distance_m"] is None else d["recovery_distance_m"])
+
+
+RISEN_M = 0.3  # the ascent's drift counts once the AUV rose this much (closed_loop/mission.cpp kRisen)
+STATION_M = 1.0  # guidance's hold point is the station the USV's status names (config/mission/usv.yaml station_radius)
+SEARCHING = ("IDLE", "COVERAGE")
+
+
+def _phase_at(status, t):
+    """The latest status at time t (status sorted by time), None before the first."""
+    i = bisect.bisect_right([x for x, _ in status], t)
+    return status[i - 1][1] if i else None
+
+
+def recovery_figures(auv_track, auv_status, usv_status):
+    """docs/mission.md, "Recovery" (the ROS-free mission computes the same): the AUV's largest 3-D distance from its
+    hold point from on station there until the ascent (auv_hold_excursion_m), its largest horizontal distance from the
+    surfacing point during the ascent once it rose RISEN_M (auv_ascent_drift_m), its largest horizontal distance from
+    the point it holds at the surface while there (auv_surface_excursion_m), and when the search ended, the ascent
+    began, the AUV surfaced and the USV reported RECOVERED (absolute simulated times, NaN: never), each read from the
+    mission statuses [(t, MissionStatus)] at their stamps; auv_track [(t, north, east, down)]."""
+    nan = float("nan")
+    a = [(_stamp(t, m), m) for t, m in auv_status]
+    u = [(_stamp(t, m), m) for t, m in usv_status]
+    first = lambda status, phases: next((t for t, m in status if m.phase in phases), nan)  # noqa: E731
+    fig = {"found_at_s": first(a, ("TARGET_FOUND", "NO_TARGET")), "ascent_at_s": first(a, ("ASCENT",)),
+           "surfaced_at_s": first(a, ("SURFACED", "RECOVERED")), "recovered_at_s": first(u, ("RECOVERED",))}
+    fig["find_to_recovery_s"] = fig["recovered_at_s"] - fig["found_at_s"]
+    hold, drift, surface, start_depth = [], [], [], None
+    for t, n, e, d in auv_track:
+        m = _phase_at(a, t)
+        if m is None:
+            continue
+        p = m.hold_point
+        if m.phase == "TARGET_FOUND" and m.on_station_since == m.on_station_since and t >= m.on_station_since:
+            hold.append(math.sqrt((n - p.x) ** 2 + (e - p.y) ** 2 + (d - p.z) ** 2))
+        if m.phase == "ASCENT":
+            start_depth = d if start_depth is None else start_depth
+            if d < start_depth - RISEN_M:
+                drift.append(math.hypot(n - p.x, e - p.y))
+        if m.phase in ("SURFACED", "RECOVERED"):
+            surface.append(math.hypot(n - p.x, e - p.y))
+    fig["auv_hold_excursion_m"] = max(hold) if hold else nan
+    fig["auv_ascent_drift_m"] = max(drift) if drift else nan
+    fig["auv_surface_excursion_m"] = max(surface) if surface else nan
+    return fig
 
 
 def _drift_after(track, t0):
@@ -329,9 +397,10 @@ def _at(track, t):
 
 def station_keeping(usv_track, mission_status, guidance_status):
     """docs/mission.md: (usv_wait_drift_m, usv_hold_p95_m). The wait: from the first STATION_KEEPING status until
-    the first TRANSIT, the largest distance from where it began. The hold: from when the USV mission reports it on
-    station at the target (on_station_since) to the end of the run (the job ends hold_time later), each guidance
-    sample that holds a point, the distance of the true position from that point; its 95th percentile."""
+    the first TRANSIT, the largest distance from where it began. The hold: while the USV mission reports it on
+    station (on_station_since of its latest status) at the target (ARRIVED) or beside the AUV (RECOVERY, RECOVERED),
+    each guidance sample that holds a point, the distance of the true position from that point; its 95th
+    percentile."""
     wait = [t for t, m in mission_status if m.phase == "STATION_KEEPING"]
     transit = next((t for t, m in mission_status if m.phase == "TRANSIT"), float("inf"))
     drift = float("nan")
@@ -339,14 +408,19 @@ def station_keeping(usv_track, mission_status, guidance_status):
         during = [p for p in usv_track if wait[0] <= p[0] <= transit]
         if during:
             drift = max(math.hypot(n - during[0][1], e - during[0][2]) for _, n, e, _ in during)
-    on_station = next((m.on_station_since for t, m in mission_status
-                       if m.phase == "ARRIVED" and m.on_station_since == m.on_station_since), None)
+    status = [(_stamp(t, m), m) for t, m in mission_status]
     errors = []
-    if on_station is not None and usv_track:
-        for t, m in guidance_status:
-            if t >= on_station and m.reference_mode == REFERENCE_HOLD:
-                _, n, e, _ = _at(usv_track, t)
-                errors.append(math.hypot(n - m.reference_point.x, e - m.reference_point.y))
+    for t, m in guidance_status if usv_track else ():
+        st = _phase_at(status, t)
+        if st is None or st.phase not in ("ARRIVED", "RECOVERY", "RECOVERED") or not t >= st.on_station_since:
+            continue
+        # the point its status says it holds: a new station (the recovery's run-in, then beside the AUV) is
+        # guidance's before the next status says so
+        if math.hypot(m.reference_point.x - st.hold_point.x, m.reference_point.y - st.hold_point.y) > STATION_M:
+            continue
+        if m.reference_mode == REFERENCE_HOLD:
+            _, n, e, _ = _at(usv_track, t)
+            errors.append(math.hypot(n - m.reference_point.x, e - m.reference_point.y))
     return drift, _percentile(errors, 0.95)
 
 
@@ -373,20 +447,24 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     fixes = [m for _, m in a["/auv/usbl/fix"]]
     fixes_ok = [m for m in fixes if m.quality == QUALITY_OK]
     usv_xte = [(t, m.cross_track_error) for t, m in u["/usv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
-    auv_xte = [(t, m.cross_track_error) for t, m in a["/auv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
+    # The AUV's search (until it reports it over): its tracking and navigation figures; after it the AUV holds, comes
+    # up and holds at the surface (the hold paths' lead-ins are no search legs), reported apart.
+    auv_end_t = next((t for t, m in a["/auv/mission/status"] if m.phase not in SEARCHING and m.phase), float("inf"))
+    auv_searching = [(t, m) for t, m in a["/auv/guidance/status"] if t <= auv_end_t]
+    auv_xte = [(t, m.cross_track_error) for t, m in auv_searching if m.mode == MODE_FOLLOW_PATH]
     wait_drift, hold_p95 = station_keeping(usv_track, u["/usv/mission/status"], u["/usv/guidance/status"])
     us = tracking_metrics(usv_bag or "", "/usv/guidance/status")
-    # the path followed: the planner's when it published one (SBB waypoints included), else the mission's
-    # (the last one with waypoints: the mission ends by sending an empty path)
-    def followed_path(bag, v):
-        followed = [m for _, m in (bag["/%s/guidance/planned_path" % v] or bag["/%s/guidance/path" % v]) if m.poses]
-        return path_ned(followed[-1]) if followed else None
-    au_split = split_tracking(a["/auv/guidance/status"], followed_path(a, "auv"), auv_track)
-    us_true = split_tracking(u["/usv/guidance/status"], followed_path(u, "usv"), usv_track)["all_truth"]
+    # the path followed: the planner's when it published one (SBB waypoints included), else the mission's. The AUV's
+    # search: its coverage, the longest (the hold and ascent paths come after it). The USV: the one guidance had at
+    # each sample (the transit, then the recovery's), as the ROS-free mission measures it.
+    def followed(bag, v):
+        return [(t, m) for t, m in (bag["/%s/guidance/planned_path" % v] or bag["/%s/guidance/path" % v]) if m.poses]
+    auv_paths = followed(a, "auv")
+    auv_path = path_ned(max(auv_paths, key=lambda x: len(x[1].poses))[1]) if auv_paths else None
+    au_split = split_tracking(auv_searching, auv_path, auv_track)
+    us_true = split_tracking(u["/usv/guidance/status"], [(t, path_ned(m)) for t, m in followed(u, "usv")],
+                             usv_track)["all_truth"]
     au, au_approach = au_split["tracking_truth"], au_split["approach_truth"]
-    # The navigation during the AUV's mission (until it reports finished); after it the AUV rises to the surface
-    # and drifts while the USV transits, reported apart.
-    auv_end_t = next((t for t, m in a["/auv/mission/status"] if m.finished), float("inf"))
     nav_during = [e for t, e in nav_err if t <= auv_end_t]
     nav_after = [e for t, e in nav_err if t > auv_end_t]
     # a USBL outage's recovery is judged during the AUV's mission, not in the surface drift after it
@@ -426,15 +504,25 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     if outcome and "sim_time_s" in outcome:  # when the job decided the outcome, not when the bags closed
         sim_time = outcome["sim_time_s"]
     died = (outcome or {}).get("died") or {}
-    held = bool((outcome or {}).get("held")) if outcome else bool(last_usv and last_usv.success)
+    # held: the USV came to the target (ARRIVED); recovered: it reported RECOVERED (the job's end, or the bag's)
+    held = any(m.phase == "ARRIVED" for _, m in u["/usv/mission/status"])
+    recovered = bool((outcome or {}).get("recovered")) or any(m.phase == "RECOVERED" for _, m in u["/usv/mission/status"])
     safety_stop = any(m.active_rule in m.active_rules and m.active_rule != "manual" and m.action >= ACTION_HOLD
                       for _, m in u["/usv/safety/transitions"] + a["/auv/safety/transitions"])
-    final_distance = (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
-                          for tt in targets_true) if usv_track and targets_true else float("nan"))
-    verdict, min_clearance = judge(scenario, u["/usv/ground_truth/odom"], {
-        "held": held, "auv_no_target": bool(last_auv and last_auv.phase == "NO_TARGET"),
+    # where the USV really held at the target (its last ARRIVED status: it then leaves for the AUV), else where it
+    # ended, against the true target (the stand-off is part of this distance)
+    arrived_t = [_stamp(t, m) for t, m in u["/usv/mission/status"] if m.phase == "ARRIVED"]
+    usv_at = (_at(usv_track, arrived_t[-1]) if arrived_t else usv_track[-1]) if usv_track else None
+    final_distance = (min(math.hypot(usv_at[1] - tt["north"], usv_at[2] - tt["east"]) for tt in targets_true)
+                      if usv_at and targets_true else float("nan"))
+    verdict, min_clearance, auv_clearance, recovery_distance = judge(scenario, u["/usv/ground_truth/odom"], {
+        "held": held, "recovered": recovered,
+        "auv_no_target": any(m.phase == "NO_TARGET" for _, m in a["/auv/mission/status"]),
         "target_error": target_error, "final_distance": final_distance, "died": bool(died),
-        "safety_stop": safety_stop}) if scenario else ("timeout", float("nan"))
+        "safety_stop": safety_stop},
+        auv_track, (outcome or {}).get("auv_model", "girona500")) if scenario else (
+        "timeout", float("nan"), float("nan"), float("nan"))
+    rec = recovery_figures(auv_track, a["/auv/mission/status"], u["/usv/mission/status"])
 
     metrics = {
         "success": verdict == "success",
@@ -462,6 +550,14 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         # where the USV really ended, against the true target (the stand-off is part of this distance)
         "usv_final_distance_to_target_m": final_distance,
         "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95,
+        # after the find (docs/mission.md, "Recovery"): the AUV keeping the spot, coming up, and the USV beside it
+        "recovered": recovered, "auv_hold_excursion_m": rec["auv_hold_excursion_m"],
+        "auv_ascent_drift_m": rec["auv_ascent_drift_m"], "auv_surface_excursion_m": rec["auv_surface_excursion_m"],
+        "recovery_distance_m": recovery_distance,  # the USV hull to the AUV at the end
+        "usv_auv_min_clearance_m": auv_clearance,  # the least of that while the AUV was near the surface
+        "find_to_recovery_s": rec["find_to_recovery_s"],
+        "found_at_s": rec["found_at_s"], "ascent_at_s": rec["ascent_at_s"], "surfaced_at_s": rec["surfaced_at_s"],
+        "recovered_at_s": rec["recovered_at_s"],
         "sim_time_s": sim_time, "wall_time_s": wall_time_s,
         # the simulated run alone (from the shared clock's start), what the ROS-free runner's wall_time_s measures
         "run_wall_time_s": (outcome or {}).get("run_wall_s", float("nan")),
@@ -494,7 +590,11 @@ def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_
     import matplotlib.pyplot as plt
     from matplotlib.patches import Circle, Polygon
 
-    fig, ax = plt.subplots(figsize=(8, 8))
+    after_find = any(m.phase not in SEARCHING for _, m in a["/auv/mission/status"])
+    if after_find:  # the recovery is a few metres across: a second panel, 40 m about it
+        fig, (ax, zoom) = plt.subplots(1, 2, figsize=(13, 7.5), gridspec_kw={"width_ratios": [1.6, 1]})
+    else:
+        fig, ax = plt.subplots(figsize=(8, 8))
     for ob in sc.get("obstacles", []) or []:
         ax.add_patch(Circle((ob["east"], ob["north"]), float(ob.get("radius", 0.5)), color="red", alpha=0.6))
     if u["/usv/guidance/safety_boxes"]:
@@ -524,6 +624,7 @@ def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_
                 label="USBL fixes (accepted)")
     for tt in sc.get("targets", []) or []:
         ax.plot(tt["east"], tt["north"], "k*", ms=14, label="target (true)")
+    drawn = _draw_recovery(ax, usv_track, auv_track, u["/usv/mission/status"], a["/auv/mission/status"])
     if detected:
         p = detected[1].origin
         ax.plot(p.y, p.x, "rx", ms=12, mew=2, label="target (detected)")
@@ -535,6 +636,21 @@ def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_
     o = sc.get("origin") or {}
     site = " (about %.5f, %.5f)" % (o["latitude"], o["longitude"]) if "latitude" in o and "longitude" in o else ""
     ax.set_title("Co-operative mission: %s%s" % (sc.get("name", ""), site))
+    if after_find:
+        for track, color in ((usv_track, "blue"), (auv_track, "purple")):
+            if track:
+                zoom.plot([p[2] for p in track], [p[1] for p in track], color=color, lw=0.8, alpha=0.5)
+        for tt in sc.get("targets", []) or []:
+            zoom.plot(tt["east"], tt["north"], "k*", ms=14)
+        _draw_recovery(zoom, usv_track, auv_track, u["/usv/mission/status"], a["/auv/mission/status"], legend=False)
+        if drawn:
+            cn, ce = sum(p[0] for p in drawn) / len(drawn), sum(p[1] for p in drawn) / len(drawn)
+            zoom.set_xlim(ce - 20, ce + 20)
+            zoom.set_ylim(cn - 20, cn + 20)
+        zoom.set_aspect("equal", adjustable="box")
+        zoom.grid(True, alpha=0.3)
+        zoom.set_xlabel("east [m]")
+        zoom.set_title("after the find: hold (square), ascent (orange), surface (circle), recovery (green)", fontsize=8)
     fig.savefig(os.path.join(out, "map.png"), dpi=110, bbox_inches="tight")
     plt.close(fig)
 
@@ -550,6 +666,37 @@ def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_
     fig.suptitle("LOS cross-track error")
     fig.savefig(os.path.join(out, "cross_track.png"), dpi=110, bbox_inches="tight")
     plt.close(fig)
+
+
+def _draw_recovery(ax, usv_track, auv_track, usv_status, auv_status, legend=True):
+    """The recovery on map.png's axes: the AUV's hold point at the find, its ascent (its track while ASCENT), where it
+    held at the surface, the USV's way to it (its track from RECOVERY on) and the point it held beside it. Returns the
+    points drawn [(north, east)] (empty: nothing after the find)."""
+    a = [(_stamp(t, m), m) for t, m in auv_status]
+    u = [(_stamp(t, m), m) for t, m in usv_status]
+    finite = lambda p: p is not None and p.x == p.x and p.y == p.y  # noqa: E731
+    hold = next((m.hold_point for _, m in a if m.phase == "TARGET_FOUND" and finite(m.hold_point)), None)
+    surface = next((m.hold_point for _, m in reversed(a) if m.phase in ("SURFACED", "RECOVERED")), None)
+    station = next((m.hold_point for _, m in reversed(u) if m.phase in ("RECOVERY", "RECOVERED")), None)
+    ascent = [t for t, m in a if m.phase == "ASCENT"]
+    recovery = [t for t, m in u if m.phase in ("RECOVERY", "RECOVERED")]
+    label = (lambda x: x) if legend else (lambda x: None)
+    if ascent:
+        pts = [p for p in auv_track if ascent[0] <= p[0] <= ascent[-1] + 0.5]
+        ax.plot([p[2] for p in pts], [p[1] for p in pts], color="orange", lw=2.5, label=label("AUV ascent"))
+    if recovery and usv_track:
+        pts = [p for p in usv_track if p[0] >= recovery[0]]
+        ax.plot([p[2] for p in pts], [p[1] for p in pts], color="limegreen", lw=2.5, label=label("USV recovery"))
+    drawn = []
+    for p, kw, text in ((hold, dict(marker="s", color="blue", mfc="none"), "AUV hold point (at depth)"),
+                        (surface, dict(marker="o", color="orange", mfc="none"), "AUV at the surface"),
+                        (station, dict(marker="^", color="green"), "USV recovery point")):
+        if finite(p):
+            ax.plot(p.y, p.x, ls="none", ms=9, mew=2, label=label(text), **kw)
+            drawn.append((p.x, p.y))
+    if drawn and auv_track:
+        ax.plot(auv_track[-1][2], auv_track[-1][1], "x", color="purple", ms=9, mew=2, label=label("AUV at the end"))
+    return drawn
 
 
 def _fmt(v, unit=""):
@@ -585,8 +732,17 @@ def _summary(out, m, scenario):
         "| USBL fixes | %d received, %d rejected | |" % (m["usbl_fixes_received"], m["usbl_fixes_rejected"]),
         "| USV final distance to the true target | %s | |" % _fmt(m["usv_final_distance_to_target_m"], " m"),
         "| USV drift while waiting for the target | %s | |" % _fmt(m["usv_wait_drift_m"], " m"),
-        "| USV hold at the target, 95th percentile, from on station (within station_radius) | %s | |" % _fmt(
-            m["usv_hold_p95_m"], " m"),
+        "| USV hold on station (target, recovery), 95th percentile, from on station (within station_radius) | %s | |"
+        % _fmt(m["usv_hold_p95_m"], " m"),
+        "| AUV hold at the find, largest excursion | %s | |" % _fmt(m["auv_hold_excursion_m"], " m"),
+        "| AUV drift while ascending | %s | |" % _fmt(m["auv_ascent_drift_m"], " m"),
+        "| AUV at the surface, largest distance from its point | %s | |" % _fmt(m["auv_surface_excursion_m"], " m"),
+        "| USV hull to the AUV at the end (least near the surface) | %s (%s) | |" % (
+            _fmt(m["recovery_distance_m"], " m"), _fmt(m["usv_auv_min_clearance_m"], " m")),
+        "| search's end, ascent, at the surface, RECOVERED (simulated time) | %s, %s, %s, %s | |" % (
+            _fmt(m["found_at_s"], " s"), _fmt(m["ascent_at_s"], " s"), _fmt(m["surfaced_at_s"], " s"),
+            _fmt(m["recovered_at_s"], " s")),
+        "| from the find to the recovery | %s | |" % _fmt(m["find_to_recovery_s"], " s"),
         "| simulated time | %s | |" % _fmt(m["sim_time_s"], " s"),
         "| wall time | %s | |" % _fmt(m["wall_time_s"], " s"),
         "", "Final phases: USV %s, AUV %s." % (m["usv_final_phase"], m["auv_final_phase"]), "",

@@ -77,39 +77,86 @@ MissionConfig loadMission(const std::string& config_dir, const std::string& scen
   return c;
 }
 
+namespace {
+// What each mission's status carries across the radio (MissionStatus on the relay).
+struct UsvStatusMsg {
+  mission::UsvPhase phase;
+  Eigen::Vector2d position, station;
+};
+struct AuvStatusMsg {
+  mission::AuvPhase phase;
+  Eigen::Vector3d position;
+  bool stationary;
+};
+
+// The ascent's drift counts once the AUV has risen this much from where it began: before, it may be moving clear
+// of the USV at depth (AuvMission's surface_clearance) [m].
+constexpr double kRisen = 0.3;
+
+void keepMax(double& m, double v) { m = std::isnan(m) ? v : std::max(m, v); }
+
+template <class Phase>
+void notePhase(VehicleRecord& r, double t, Phase p) {
+  const std::string name = mission::toString(p);
+  if (r.phases.empty() || r.phases.back().second != name) r.phases.emplace_back(t, name);
+}
+}  // namespace
+
 MissionResult runMission(const MissionConfig& cfg) {
   const auto w0 = std::chrono::steady_clock::now();
   MissionResult res;
   UsvStack usv(cfg.scenario, cfg.usv);
   AuvStack auv(cfg.scenario, cfg.auv);
-  // the relay's topics over the radio: /usv_gps and /usv_heading to the AUV (best effort), /target back (reliable)
+  // the relay's topics over the radio: /usv_gps and /usv_heading to the AUV (best effort), /target back (reliable),
+  // each mission's status to the other (best effort, every mission period)
   RadioLink<sim::GpsCompassReading> to_auv(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed);
   RadioLink<Eigen::Vector3d> to_usv(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed + 1);
+  RadioLink<UsvStatusMsg> usv_status(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed + 2);
+  RadioLink<AuvStatusMsg> auv_status(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed + 3);
+  const int status_every = stepsPer(1.0 / cfg.usv.mission_period, cfg.usv.sim.dt);
   long step = 0;
   double t = 0.0;
   std::optional<Eigen::Vector2d> wait_start;  // where the USV started waiting for the target
-  bool target_delivered = false;
+  bool target_delivered = false, held = false;
+  double ascent_depth = kNaN;  // the AUV's true depth when its ascent began
+  res.auv_hold_point = Eigen::Vector3d::Constant(kNaN);
   std::vector<double> hold_error, nav_error;
   res.usv_wait_drift_m = kNaN;
   res.reason = "simulated time limit reached";
-  res.min_clearance_m = std::numeric_limits<double>::infinity();
+  res.min_clearance_m = res.usv_auv_min_clearance_m = std::numeric_limits<double>::infinity();
+  res.auv_hold_excursion_m = res.auv_ascent_drift_m = res.auv_surface_excursion_m = kNaN;
   std::pair<double, std::string> closest;  // when the hull came closest to what
-  bool held = false;
+  double auv_closest_t = kNaN;              // and to the AUV near the surface
+  // where the USV held at the target: its true position at the last step of ARRIVED (it then leaves for the AUV)
+  std::optional<Eigen::Vector2d> usv_station_end;
   const sim::Scenario::Mission& judge = cfg.scenario.mission;
   const Fault* geofence = nullptr;
   for (const auto& f : cfg.link_faults.faults())
     if (f.name == "geofence") geofence = &f;
   bool geofence_sent = false;
-  for (; t <= judge.max_sim_time; ++step) {
-    const bool link_up = !cfg.link_faults.active("link", t);
+  const bool kills = cfg.kill == "usv" || cfg.kill == "auv";
+  double end = judge.max_sim_time;
+  for (; t <= end; ++step) {
+    if (kills && res.stack_died.empty() && t >= cfg.kill_at) {  // SIGKILL: the stack stops where it is
+      res.stack_died = cfg.kill;
+      end = std::min(end, t + cfg.after_kill);
+    }
+    const bool usv_alive = res.stack_died != "usv", auv_alive = res.stack_died != "auv";
+    const bool link_up = !cfg.link_faults.active("link", t) && usv_alive && auv_alive;  // a dead relay: no link
     to_auv.setUp(link_up);
     to_usv.setUp(link_up);
-    usv.step();
-    if (usv.gpsNow()) to_auv.send(usv.time(), *usv.gpsNow(), false);
-    for (const auto& g : to_auv.receive(usv.time())) auv.onUsvGps(g);
-    auv.setUsvTruth(usv.truth());  // the simulated acoustic channel
-    auv.step();
-    t = usv.time();
+    usv_status.setUp(link_up);
+    auv_status.setUp(link_up);
+    if (usv_alive) {
+      usv.step();
+      if (usv.gpsNow()) to_auv.send(usv.time(), *usv.gpsNow(), false);
+    }
+    t = usv_alive ? usv.time() : t + cfg.usv.sim.dt;
+    if (auv_alive) {
+      for (const auto& g : to_auv.receive(t)) auv.onUsvGps(g);
+      auv.setUsvTruth(usv.truth());  // the simulated acoustic channel
+      auv.step();
+    }
     if (link_up) {  // the relays' link status
       usv.onPeerAlive(t);
       auv.onPeerAlive(t);
@@ -119,9 +166,18 @@ MissionResult runMission(const MissionConfig& cfg) {
       geofence_sent = true;
     }
     if (auto tg = auv.takeTarget()) {
-      res.target = *tg;
+      res.target = *tg;  // the last one the AUV sent (refined while it holds)
       to_usv.send(t, *tg, true);
     }
+    if (step % status_every == 0) {  // each mission's status, as its nodelet's timer publishes it
+      const mission::UsvMission& um = usv.mission();
+      const mission::AuvMission& am = auv.mission();
+      if (usv_alive && um.pose())
+        usv_status.send(t, {um.phase(), *um.pose(), um.stationPoint() ? *um.stationPoint() : mission::kNoPoint}, false);
+      if (auv_alive && am.pose()) auv_status.send(t, {am.phase(), *am.pose(), am.stationary()}, false);
+    }
+    for (const auto& m : usv_status.receive(t)) auv.onUsvStatus(m.phase, m.position, m.station, t);
+    for (const auto& m : auv_status.receive(t)) usv.onAuvStatus(m.phase, m.position, m.stationary, t);
     for (const auto& tg : to_usv.receive(t)) {
       usv.onTarget(tg.head<2>(), t);
       target_delivered = true;
@@ -133,8 +189,11 @@ MissionResult runMission(const MissionConfig& cfg) {
       if (!wait_start) wait_start = usv_ne, res.usv_wait_drift_m = 0.0;
       res.usv_wait_drift_m = std::max(res.usv_wait_drift_m, (usv_ne - *wait_start).norm());
     }
-    record(res.usv, usv.truth(), step, usv.guidanceStep(), usv.guidance());
-    if (step % 5 == 0) {  // the hull against every true shape, a fault's obstacle included, at 20 Hz
+    notePhase(res.usv, t, usv.mission().phase());
+    notePhase(res.auv, t, auv.mission().phase());
+    record(res.usv, usv.truth(), step, usv_alive ? usv.guidanceStep() : nullptr, usv.guidance());
+    const VehicleState& ax = auv.truth();
+    if (step % 5 == 0) {  // the hull against every true shape, a fault's obstacle included, and the AUV, at 20 Hz
       const auto& fault = usv.simulation().faultObstacle();
       std::string what;
       const double c = sim::hullClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, cfg.scenario.world,
@@ -143,8 +202,13 @@ MissionResult runMission(const MissionConfig& cfg) {
         res.min_clearance_m = c;
         closest = {t, what};
       }
+      res.recovery_distance_m = auvClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, ax.position.head<2>(), cfg.auv.length);
+      if (ax.position.z() < kAuvContactDepth && res.recovery_distance_m < res.usv_auv_min_clearance_m) {
+        res.usv_auv_min_clearance_m = res.recovery_distance_m;
+        auv_closest_t = t;
+      }
     }
-    if (step % 5 == 0) {
+    if (step % 5 == 0 && usv_alive) {
       const VehicleState& x = usv.truth();
       const MotionReference& ref = usv.lastGuidance().reference;
       const control::JoystickOut& j = usv.command().joystick;
@@ -156,30 +220,65 @@ MissionResult runMission(const MissionConfig& cfg) {
                                j.surge, j.sway, j.yaw, dp.heading, dp.steady_force.x(), dp.steady_force.y(),
                                dp.distance});
     }
-    record(res.auv, auv.truth(), step, auv.guidanceStep(), auv.guidance());
-    if (auv.estimate() && auv.estimate()->t >= t - 1e-9 && !auv.mission().finished())  // a new /auv/odom
-      nav_error.push_back((auv.estimate()->position.head<2>() - auv.truth().position.head<2>()).norm());
-    // success: on station at the target (the USV mission says since when) for hold_time, as the main job
-    const double on_station = usv.mission().onStationSince();
-    if (judge.expect_target && usv.mission().finished() && !std::isnan(on_station)) {
+    // the AUV's tracking counts in its search (the hold and ascent paths' lead-ins are no search legs), as the report's
+    record(res.auv, ax, step, auv_alive && !auv.mission().searchOver() ? auv.guidanceStep() : nullptr, auv.guidance());
+    if (step % 5 == 0 && auv_alive) {
+      const Eigen::Vector3d e = auv.estimate() ? auv.estimate()->position : Eigen::Vector3d::Constant(kNaN);
+      const MotionReference& ref = auv.lastGuidance().reference;
+      const Eigen::Vector4d tau =
+          cfg.auv.model == "girona500" ? auv.command().thrusters.tau : Eigen::Vector4d::Constant(kNaN);
+      res.auv_trace.push_back({ax.t, ax.position.x(), ax.position.y(), ax.position.z(), ax.yaw, e.x(), e.y(), e.z(),
+                               static_cast<double>(ref.mode), ref.point.x(), ref.point.y(), ref.depth, ref.heading,
+                               tau(0), tau(1), tau(2), tau(3)});
+    }
+    const mission::AuvMission& am = auv.mission();
+    if (auv.estimate() && auv.estimate()->t >= t - 1e-9 && !am.searchOver())  // a new /auv/odom, searching
+      nav_error.push_back((auv.estimate()->position.head<2>() - ax.position.head<2>()).norm());
+    // the AUV keeping the spot: its true position from the hold point, from on station there until the ascent
+    if (am.phase() == mission::AuvPhase::TargetFound) {
+      res.auv_hold_point = am.holdPoint();
+      if (t >= am.onStationSince()) keepMax(res.auv_hold_excursion_m, (ax.position - am.holdPoint()).norm());
+    }
+    // coming up: from the surfacing point, once it has risen (a move clear of the USV at depth comes first)
+    if (am.phase() == mission::AuvPhase::Ascent) {
+      if (std::isnan(ascent_depth)) ascent_depth = ax.position.z();
+      if (ax.position.z() < ascent_depth - kRisen)
+        keepMax(res.auv_ascent_drift_m, (ax.position.head<2>() - am.holdPoint().head<2>()).norm());
+    }
+    // holding at the surface (waiting for the USV, or beside it): from the point it holds there
+    if (am.phase() == mission::AuvPhase::Surfaced || am.phase() == mission::AuvPhase::Recovered)
+      keepMax(res.auv_surface_excursion_m, (ax.position.head<2>() - am.holdPoint().head<2>()).norm());
+    // the USV on station: at the target, and at its recovery point
+    const mission::UsvMission& um = usv.mission();
+    held = held || um.arrived();
+    if (um.phase() == mission::UsvPhase::Arrived) usv_station_end = usv_ne;
+    const auto ph = um.phase();
+    if ((ph == mission::UsvPhase::Arrived || ph == mission::UsvPhase::Recovery || ph == mission::UsvPhase::Recovered) &&
+        t >= um.onStationSince()) {
       const auto* g = usv.guidanceStep();
       if (g && g->reference.mode == ReferenceMode::kHold)
         hold_error.push_back((usv_ne - g->reference.point.head<2>()).norm());
-      if (t >= on_station + judge.hold_time) {
-        held = true;
-        res.reason = "USV holds position at the target: " + usv.mission().detail();
-        break;
-      }
     }
-    if (auv.mission().phase() == mission::AuvPhase::NoTarget) {
-      res.reason = "AUV finished its coverage without a detection";
+    if (um.phase() == mission::UsvPhase::Recovered) {
+      res.recovered = true;
+      res.reason = "the AUV is recovered: " + um.detail();
       break;
     }
   }
-  if (!held && usv.mission().finished() && std::isnan(usv.mission().onStationSince()))
-    res.reason += ": the USV arrived but never came on station (within the mission's station_radius)";
-  finish(res.usv, mission::toString(usv.mission().phase()));
-  finish(res.auv, mission::toString(auv.mission().phase()));
+  const mission::AuvMission& am = auv.mission();
+  const mission::UsvMission& um = usv.mission();
+  if (!res.recovered) {
+    if (!res.stack_died.empty())
+      res.reason = "the " + res.stack_died + " stack was killed at " + std::to_string(cfg.kill_at) + " s; the " +
+                   (res.stack_died == "usv" ? std::string("AUV: ") + mission::toString(am.phase()) + " (" + am.detail()
+                                            : std::string("USV: ") + mission::toString(um.phase()) + " (" + um.detail()) +
+                   ")";
+    else if (am.searchOver())
+      res.reason += ": the AUV is " + std::string(mission::toString(am.phase())) + " (" + am.detail() + "), the USV " +
+                    mission::toString(um.phase());
+  }
+  finish(res.usv, mission::toString(um.phase()));
+  finish(res.auv, mission::toString(am.phase()));
   res.sim_time_s = t;
   res.usv_safety = usv.supervisor().transitions();
   res.auv_safety = auv.supervisor().transitions();
@@ -191,7 +290,7 @@ MissionResult runMission(const MissionConfig& cfg) {
     res.usbl_fixes_received = u->fixes().size();
     for (const auto& f : u->fixes()) res.usbl_fixes_rejected += f.quality != usbl::Q_OK;
   }
-  res.relay_lost = to_auv.lost() + to_usv.lost();
+  res.relay_lost = to_auv.lost() + to_usv.lost() + usv_status.lost() + auv_status.lost();
 
   const auto& targets = cfg.scenario.world.targets;
   res.target_error_m = res.usv_final_distance_to_target_m = kNaN;
@@ -200,31 +299,46 @@ MissionResult runMission(const MissionConfig& cfg) {
     for (const auto& tt : targets) best = std::min(best, (res.target->head<2>() - tt.position.head<2>()).norm());
     res.target_error_m = best;
   }
-  if (!targets.empty()) {
+  if (!targets.empty()) {  // where it held at the target, else where it is now
+    const Eigen::Vector2d at = usv_station_end ? *usv_station_end : Eigen::Vector2d(usv.truth().position.head<2>());
     double best = std::numeric_limits<double>::infinity();
-    for (const auto& tt : targets) best = std::min(best, (usv.truth().position.head<2>() - tt.position.head<2>()).norm());
+    for (const auto& tt : targets) best = std::min(best, (at - tt.position.head<2>()).norm());
     res.usv_final_distance_to_target_m = best;
   }
-  res.detection_time_s = auv.mission().detectionTime();
+  res.detection_time_s = am.detectionTime();
   if (std::isinf(res.min_clearance_m)) res.min_clearance_m = kNaN;  // nothing in the water
+  if (std::isinf(res.usv_auv_min_clearance_m)) res.usv_auv_min_clearance_m = kNaN;
+  res.found_at_s = am.searchEndedAt();
+  res.ascent_at_s = am.ascentStart();
+  res.surfaced_at_s = am.surfacedAt();
+  res.recovered_at_s = um.recoveredAt();
+  res.find_to_recovery_s = res.recovered_at_s - res.found_at_s;
+  res.auv_surface_point = std::isnan(res.surfaced_at_s) ? Eigen::Vector2d(kNaN, kNaN) : Eigen::Vector2d(am.holdPoint().head<2>());
+  res.recovery_point = um.recoveryPoint();
 
   OutcomeFacts f;
   f.expect_target = judge.expect_target;
   f.held = held;
-  f.auv_no_target = auv.mission().phase() == mission::AuvPhase::NoTarget;
+  f.recovered = res.recovered;
+  f.auv_no_target = am.noTarget();
   f.target_reported = res.target.has_value();
   f.target_error_m = res.target_error_m;
   f.target_tolerance_m = judge.target_tolerance;
   f.final_distance_m = res.usv_final_distance_to_target_m;
   f.station_tolerance_m = cfg.usv.mission.standoff + judge.target_tolerance;
   f.min_clearance_m = std::isnan(res.min_clearance_m) ? std::numeric_limits<double>::infinity() : res.min_clearance_m;
+  f.auv_clearance_m = std::isnan(res.usv_auv_min_clearance_m) ? std::numeric_limits<double>::infinity()
+                                                              : res.usv_auv_min_clearance_m;
+  f.stack_died = !res.stack_died.empty();
   for (const auto* log : {&res.usv_safety, &res.auv_safety})
     for (const auto& tr : *log) f.safety_stop |= tr.to_active && tr.rule != "manual" && tr.action >= safety::Action::kHold;
   res.outcome = classify(f);
   if (res.outcome == Outcome::kCollision) {
+    const bool auv_hit = !std::isnan(res.usv_auv_min_clearance_m) && !(res.min_clearance_m <= res.usv_auv_min_clearance_m);
+    const auto hit = auv_hit ? std::make_pair(auv_closest_t, std::string("the AUV")) : closest;
     char b[160];
-    std::snprintf(b, sizeof b, "the hull touched %s at %.1f s (clearance %.2f m); ", closest.second.c_str(),
-                  closest.first, res.min_clearance_m);
+    std::snprintf(b, sizeof b, "the hull touched %s at %.1f s (clearance %.2f m); ", hit.second.c_str(), hit.first,
+                  auv_hit ? res.usv_auv_min_clearance_m : res.min_clearance_m);
     res.reason = b + res.reason;
   }
   res.success = res.outcome == Outcome::kSuccess;

@@ -1,16 +1,21 @@
 // mission_rosfree: the co-operative mission ROS-free in one process (closed_loop::runMission), on the same
 // scenario, configuration files and seeds as ./scripts/mission. Prints one JSON object with the figures the
 // mission report gives (metrics.json's keys; `outcome` one of closed_loop/outcome.h's, `reason` the sentence);
-// --out DIR also writes the tracks as CSV, and the USV's trace (usv_trace.csv: truth, guidance's reference, the
-// joystick command) for tuning. --fault PLAN injects the faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault: the simulators', and link and geofence between the
-// vehicles); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
+// --out DIR also writes the tracks as CSV, and each vehicle's trace for tuning (usv_trace.csv: truth, guidance's
+// reference, the joystick command; auv_trace.csv: truth, the navigation estimate, the reference, the wrench).
+// --fault PLAN injects the faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault: the simulators', and link
+// and geofence between the vehicles); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
 // --seed S draws every sensor's noise anew (the USV simulator seed 2S-1, the AUV's 2S: S = 1 is the launch files'
 // seeds 1 and 2); the scenario's own seeds (its current's) stay as written.
+// --kill V@T stops one vehicle's stack at simulated time T (as ./scripts/mission --kill) and runs on for --after-kill
+// seconds (default 60). The recovery figures (docs/mission.md, "Recovery") and the times of the search's end, the
+// ascent, the surface and RECOVERED come with the rest.
 // The AUV navigates on USBL fixes as in the main job (--auv-navigation ins: the simulator's INS-like estimate);
 // the radio between the vehicles delays every message --relay-latency seconds and loses best-effort ones with
 // probability --relay-loss.
 //   mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--auv-navigation usbl|ins] [--config DIR]
-//                   [--relay-latency S] [--relay-loss P] [--fault PLAN] [--seed S] [--out DIR]
+//                   [--relay-latency S] [--relay-loss P] [--fault PLAN] [--seed S] [--kill V@T] [--after-kill S]
+//                   [--out DIR]
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -63,11 +68,19 @@ void writeCsv(const std::string& path, const char* header, const std::vector<Eig
   f << header << "\n";
   for (const auto& r : rows) f << r(0) << "," << r(1) << "," << r(2) << "," << r(3) << "\n";
 }
+template <std::size_t N>
+void writeTrace(const std::string& path, const char* header, const std::vector<std::array<double, N>>& rows) {
+  std::ofstream f(path);
+  f << header << "\n";
+  for (const auto& row : rows)
+    for (std::size_t i = 0; i < N; ++i) f << row[i] << (i + 1 < N ? "," : "\n");
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string scenario, model = "girona500", config = OFFSHORE_GNC_CONFIG_DIR, out, faults;
-  std::string navigation = "usbl";
+  std::string navigation = "usbl", kill;
+  double after_kill = 60.0;
   double latency = -1.0, loss = 0.0;  // latency < 0: the mission's default
   long seed = 1;
   for (int i = 1; i < argc; ++i) {
@@ -88,10 +101,13 @@ int main(int argc, char** argv) {
     else if (a == "--out") out = next();
     else if (a == "--fault") faults += " " + next();
     else if (a == "--seed") seed = static_cast<long>(number(a, next()));
+    else if (a == "--kill") kill = next();
+    else if (a == "--after-kill") after_kill = number(a, next());
     else {
       std::fprintf(stderr,
                    "usage: mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--auv-navigation usbl|ins] "
-                   "[--config DIR] [--relay-latency S] [--relay-loss P] [--fault PLAN] [--seed S] [--out DIR]\n");
+                   "[--config DIR] [--relay-latency S] [--relay-loss P] [--fault PLAN] [--seed S] [--kill V@T] "
+                   "[--after-kill S] [--out DIR]\n");
       return 2;
     }
   }
@@ -113,14 +129,20 @@ int main(int argc, char** argv) {
     cfg.link_faults = plan.of("both");  // link, geofence: between the vehicles
     cfg.usv.sim.faults = plan.of("usv");
     cfg.auv.sim.faults = plan.of("auv");
+    if (!kill.empty()) {
+      const auto at = kill.find('@');
+      cfg.kill = kill.substr(0, at);
+      if (at == std::string::npos || (cfg.kill != "usv" && cfg.kill != "auv"))
+        throw ConfigError("--kill '" + kill + "' is not VEHICLE@SIM_S with VEHICLE usv or auv");
+      cfg.kill_at = number("--kill", kill.substr(at + 1));
+      cfg.after_kill = requireRange("--after-kill", after_kill, 0, 1e5);
+    }
     const closed_loop::MissionResult r = closed_loop::runMission(cfg);
     if (!out.empty()) {
       writeCsv(out + "/usv_truth.csv", "t,north,east,down", r.usv.truth);
       writeCsv(out + "/auv_truth.csv", "t,north,east,down", r.auv.truth);
-      std::ofstream f(out + "/usv_trace.csv");
-      f << closed_loop::kUsvTraceHeader << "\n";
-      for (const auto& row : r.usv_trace)
-        for (std::size_t i = 0; i < row.size(); ++i) f << row[i] << (i + 1 < row.size() ? "," : "\n");
+      writeTrace(out + "/usv_trace.csv", closed_loop::kUsvTraceHeader, r.usv_trace);
+      writeTrace(out + "/auv_trace.csv", closed_loop::kAuvTraceHeader, r.auv_trace);
     }
     std::printf(
         "{\"success\": %s, \"outcome\": %s, \"reason\": %s, \"usv_xte_est_rmse_m\": %s, \"usv_xte_est_sd_m\": %s, "
@@ -131,7 +153,10 @@ int main(int argc, char** argv) {
         "\"usv_final_distance_to_target_m\": %s, \"usv_wait_drift_m\": %s, \"usv_hold_p95_m\": %s, "
         "\"usv_final_phase\": %s, \"auv_final_phase\": %s, \"usv_safety\": %s, \"auv_safety\": %s, "
         "\"auv_nav_source\": %s, \"auv_nav_rmse_m\": %s, \"auv_nav_max_m\": %s, \"usbl_fixes_received\": %zu, "
-        "\"usbl_fixes_rejected\": %zu, \"relay_lost\": %zu, \"sim_time_s\": %s, \"wall_time_s\": %s}\n",
+        "\"usbl_fixes_rejected\": %zu, \"relay_lost\": %zu, \"recovered\": %s, \"auv_hold_excursion_m\": %s, "
+        "\"auv_ascent_drift_m\": %s, \"auv_surface_excursion_m\": %s, \"recovery_distance_m\": %s, \"usv_auv_min_clearance_m\": %s, "
+        "\"find_to_recovery_s\": %s, \"found_at_s\": %s, \"ascent_at_s\": %s, \"surfaced_at_s\": %s, "
+        "\"recovered_at_s\": %s, \"stacks_died\": %s, \"sim_time_s\": %s, \"wall_time_s\": %s}\n",
         r.success ? "true" : "false", str(closed_loop::toString(r.outcome)).c_str(), str(r.reason).c_str(),
         num(r.usv.metrics.rmse).c_str(), num(r.usv.metrics.sd).c_str(), num(r.usv.metrics.mae).c_str(),
         r.usv.metrics.samples, num(r.usv.metrics_truth.rmse).c_str(), r.usv.metrics_truth.samples,
@@ -142,7 +167,12 @@ int main(int argc, char** argv) {
         num(r.usv_wait_drift_m).c_str(), num(r.usv_hold_p95_m).c_str(), str(r.usv.final_phase).c_str(), str(r.auv.final_phase).c_str(),
         activations(r.usv_safety).c_str(), activations(r.auv_safety).c_str(), str(navigation).c_str(),
         num(r.auv_nav_rmse_m).c_str(), num(r.auv_nav_max_m).c_str(), r.usbl_fixes_received, r.usbl_fixes_rejected,
-        r.relay_lost, num(r.sim_time_s).c_str(),
+        r.relay_lost, r.recovered ? "true" : "false", num(r.auv_hold_excursion_m).c_str(),
+        num(r.auv_ascent_drift_m).c_str(), num(r.auv_surface_excursion_m).c_str(), num(r.recovery_distance_m).c_str(), num(r.usv_auv_min_clearance_m).c_str(),
+        num(r.find_to_recovery_s).c_str(), num(r.found_at_s).c_str(), num(r.ascent_at_s).c_str(),
+        num(r.surfaced_at_s).c_str(), num(r.recovered_at_s).c_str(),
+        r.stack_died.empty() ? "{}" : ("{" + str(r.stack_died) + ": " + num(cfg.kill_at) + "}").c_str(),
+        num(r.sim_time_s).c_str(),
         num(r.wall_time_s).c_str());
     return r.success ? 0 : 1;
   } catch (const std::exception& e) {

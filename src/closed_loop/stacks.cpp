@@ -87,6 +87,9 @@ control::SafetyOverride overrideOf(const safety::Decision& d) {
   }
 }
 
+// The supervisor surfaces the vehicle (surface, or abort, which surfaces): the AUV mission ascends as well.
+bool surfaces(const safety::Decision& d) { return !d.manual && d.action >= safety::Action::kSurface; }
+
 // The AUV's supervisor as auv.launch configures it: without USBL (navigation:=ins) its USBL timeout is off.
 safety::SupervisorConfig auvSafety(const AuvStackConfig& c) {
   if (c.navigation != "usbl" && c.navigation != "ins")
@@ -132,6 +135,15 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
   return c;
 }
 
+const ParamTable<SurfaceGpsConfig>& SurfaceGpsConfig::table() {
+  using P = SurfaceGpsConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("rate", &P::rate, 0.0, 20.0, "Hz", "the AUV's GPS fixes per second at the surface (ROS-free model; 0: none)")
+      .number("sigma", &P::sigma, 0.0, 50.0, "m", "their horizontal standard deviation, each axis")
+      .number("max_depth", &P::max_depth, 0.0, 5.0, "m", "deeper than this the antenna is under water: no fix");
+  return t;
+}
+
 UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
     : cfg_(cfg),
       sim_(scenario, cfg.sim),
@@ -145,15 +157,28 @@ UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
       mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {
   if (!cfg.safety.region.empty()) mission_.setRegion(safety::Region::fromList(cfg.safety.region));
+  double bow = 0.0;  // the recovery distance is the bow's (as the UsvMission nodelet reads the outline)
+  for (std::size_t i = 0; i + 1 < cfg.hull.outline.size(); i += 2) bow = std::max(bow, cfg.hull.outline[i]);
+  mission_.setBowReach(bow);
 }
 
-void UsvStack::onTarget(const Eigen::Vector2d& ned, double t) {
-  mission_.onTarget(ned, t);
+void UsvStack::pathToGuidance() {
   if (auto p = mission_.takePath()) {
     std::vector<Eigen::Vector3d> path;
     for (const auto& w : *p) path.emplace_back(w.x(), w.y(), 0.0);
     guidance_.setPath(path);
   }
+}
+
+void UsvStack::onTarget(const Eigen::Vector2d& ned, double t) {
+  mission_.onTarget(ned, t);
+  pathToGuidance();
+}
+
+void UsvStack::onAuvStatus(mission::AuvPhase phase, const Eigen::Vector3d& ned, bool stationary, double t) {
+  mission_.onAuvStatus(phase, ned, stationary, t);
+  safety_.core().heard(safety::Source::kLink, t);
+  pathToGuidance();
 }
 
 void UsvStack::onPeerAlive(double t) {
@@ -249,11 +274,7 @@ void UsvStack::step() {
   course = course || scans_.size() < queued;
   if (cfg_.mission_enabled) {
     if (step_ % mission_every_ == 0) mission_.tick(t);
-    if (auto p = mission_.takePath()) {
-      std::vector<Eigen::Vector3d> path;
-      for (const auto& w : *p) path.emplace_back(w.x(), w.y(), 0.0);
-      guidance_.setPath(path);
-    }
+    pathToGuidance();
   }
   if (step_ % guidance_every_ == 0 && guidance_.update(t, guidance_every_ * cfg_.sim.dt, last_)) {
     guided_ = true;
@@ -302,14 +323,30 @@ AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, co
   c.mission.validate();
   c.safety = readSafety(dir + "/safety/auv.yaml", safety::auvDefaults());
   c.usbl = loadUsblNavigation(dir, model);
+  c.length = auvLength(dir, model);
+  // The Girona500 has a GPS for the surface (COLA2's navigator fuses it); the aColor (a BlueROV2-class frame on
+  // ArduSub) has none: at the surface it stays on the USBL, the USV a few metres away.
+  if (model == "acolor") c.surface_gps.rate = 0.0;
   c.sim.seed = 2;  // sim_auv.launch's default
   c.sim.auv = model == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
   return c;
 }
 
+double auvLength(const std::string& dir, const std::string& model) {
+  struct Vehicle {
+    double length = 1.5;
+  } v;
+  static const ParamTable<Vehicle> table =
+      ParamTable<Vehicle>().number("vehicle/length", &Vehicle::length, 0.1, 50.0, "m", "L_AUV");
+  const std::string file = dir + "/auv_" + model + ".yaml";
+  readParamsYaml(loadYamlFile(file), table, v, file);
+  return v.length;
+}
+
 AuvStack::AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg)
     : cfg_(cfg),
       sim_(scenario, cfg.sim),
+      gps_rng_(static_cast<std::mt19937::result_type>(cfg.sim.seed * 7919 + 5)),
       sonar_(cfg.sonar),
       guidance_(cfg.guidance),
       control_(cfg.control),
@@ -318,9 +355,28 @@ AuvStack::AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg)
       guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
       mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)),
-      navigation_every_(stepsPer(cfg.usbl.params.rate, cfg.sim.dt)) {
+      navigation_every_(stepsPer(cfg.usbl.params.rate, cfg.sim.dt)),
+      gps_every_(cfg.surface_gps.rate > 0.0 ? stepsPer(cfg.surface_gps.rate, cfg.sim.dt) : 0) {
+  cfg.surface_gps.table().validate(cfg.surface_gps);
   if (cfg.navigation == "usbl")
     usbl_.emplace(cfg.usbl, geo::LocalNed(scenario.origin), cfg.usv_gps_antenna, cfg.usbl_seed, cfg.sim.faults);
+}
+
+void AuvStack::onUsvStatus(mission::UsvPhase phase, const Eigen::Vector2d& ned, const Eigen::Vector2d& station,
+                           double t) {
+  if (!cfg_.mission_enabled) return;
+  mission_.onUsvStatus(phase, ned, station, t);
+  if (auto p = mission_.takePath()) guidance_.setPath(*p);
+}
+
+void AuvStack::surfaceGps(double t) {
+  const VehicleState& x = sim_.state();
+  if (gps_every_ == 0 || step_ % gps_every_ != 0 || x.position.z() > cfg_.surface_gps.max_depth) return;
+  std::normal_distribution<double> n(0.0, cfg_.surface_gps.sigma);
+  const Eigen::Vector3d fix(x.position.x() + n(gps_rng_), x.position.y() + n(gps_rng_), x.position.z());
+  const double var = std::max(cfg_.surface_gps.sigma * cfg_.surface_gps.sigma, 1e-4);
+  // horizontal only: the depth sensor gives the depth, the fix's is taken as unknown
+  usbl_->positionFix(t, fix, Eigen::Vector3d(var, var, 100.0).asDiagonal());
 }
 
 void AuvStack::onUsvGps(const sim::GpsCompassReading& g) {
@@ -335,6 +391,7 @@ void AuvStack::navigate(const VehicleState& est, double t) {
   poses_.add(s);
   guidance_.setState(s, t);
   control_.onState(s, t);
+  if (cfg_.mission_enabled) mission_.onPose(s.position, s.yaw, t);
   safety::Supervisor& sup = safety_.core();
   sup.heard(safety::Source::kNavigation, t);
   sup.position(t, s.position.x(), s.position.y());
@@ -383,6 +440,7 @@ void AuvStack::step() {
     if (out.ahrs) usbl_->ahrs(out.ahrs->t, out.ahrs->roll, out.ahrs->pitch, out.ahrs->yaw, out.ahrs->angular_rate);
     if (out.dvl) usbl_->dvl(out.dvl->t, out.dvl->velocity);
     usbl_->step(t, usv_truth_, sim_.state());
+    surfaceGps(t);
     for (double s : usbl_->acceptedNow()) sup.heard(safety::Source::kUsbl, s);
     if (step_ % navigation_every_ == 0)
       if (auto e = usbl_->estimate(t)) navigate(*e, t);
@@ -407,14 +465,18 @@ void AuvStack::step() {
     }
   }
   safety_.tick(step_, t, control_);
+  if (cfg_.mission_enabled && surfaces(safety_.decision())) {
+    mission_.onSafetySurface(t);
+    if (auto p = mission_.takePath()) guidance_.setPath(*p);
+  }
   if (step_ % control_every_ == 0) {
     sup.heard(safety::Source::kCommand, t);
-    const control::ActuatorCommand c = control_.update(t);
+    command_ = control_.update(t);
     if (cfg_.model == "girona500") {
-      const auto& sp = c.thrusters.alloc.setpoint;
+      const auto& sp = command_.thrusters.alloc.setpoint;
       sim_.setThrusters(std::vector<double>(sp.data(), sp.data() + sp.size()));
     } else {
-      sim_.setRcChannels(c.rc);
+      sim_.setRcChannels(command_.rc);
     }
   }
 }

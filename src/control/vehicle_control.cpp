@@ -18,11 +18,12 @@ bool stateFinite(const VehicleState& s) {
 
 double clamp1(double v) { return std::isfinite(v) ? std::clamp(v, -1.0, 1.0) : 0.0; }
 
-// Body (x forward, y starboard) components of a NED horizontal vector.
+// Body (x forward, y starboard) components of a NED horizontal vector, and back.
 Eigen::Vector2d toBody(const Eigen::Vector2d& ned, double yaw) {
   const double c = std::cos(yaw), s = std::sin(yaw);
   return {c * ned.x() + s * ned.y(), -s * ned.x() + c * ned.y()};
 }
+Eigen::Vector2d toNed(const Eigen::Vector2d& body, double yaw) { return toBody(body, -yaw); }
 
 }  // namespace
 
@@ -178,10 +179,12 @@ const ParamTable<AcolorControlParams>& AcolorControlParams::table() {
   static const ParamTable<P> t = ParamTable<P>()
       .nest("yaw/", &P::yaw, PidGains::table())
       .nest("heave/", &P::heave, PidGains::table())
+      .nest("hold/", &P::hold, PidGains::table())
       .integer("rc/num_channels", &P::num_channels, 1, 18, "RC channels sent to the flight controller")
       .integer("rc/heave", &P::channel_heave, 1, 18, "1-based channel of heave (throttle)")
       .integer("rc/yaw", &P::channel_yaw, 1, 18, "1-based channel of yaw")
-      .integer("rc/surge", &P::channel_surge, 1, 18, "1-based channel of surge (forward)");
+      .integer("rc/surge", &P::channel_surge, 1, 18, "1-based channel of surge (forward)")
+      .integer("rc/sway", &P::channel_sway, 1, 18, "1-based channel of sway (lateral, starboard positive)");
   return t;
 }
 
@@ -190,6 +193,7 @@ void AcolorControlParams::validate() const {
   requireRange("rc/heave", channel_heave, 1, num_channels);
   requireRange("rc/yaw", channel_yaw, 1, num_channels);
   requireRange("rc/surge", channel_surge, 1, num_channels);
+  requireRange("rc/sway", channel_sway, 1, num_channels);
   requireRange("dt", dt, 1e-3, 10.0);
 }
 
@@ -200,6 +204,8 @@ void AcolorController::setParams(const AcolorControlParams& p) {
   p_ = p;
   yaw_.setGains(p.yaw);
   heave_.setGains(p.heave);
+  north_.setGains(p.hold);
+  east_.setGains(p.hold);
 }
 
 std::uint16_t AcolorController::pwm(double normalised) {
@@ -212,6 +218,10 @@ std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const
     counters_.increment(stateFinite(s) ? "bad_reference" : "nan_state");
     return ch;  // neutral on every channel
   }
+  if (r.mode != ReferenceMode::kHold) {
+    north_.reset();
+    east_.reset();
+  }
   if (r.mode == ReferenceMode::kIdle) {
     yaw_.reset();
     heave_.reset();
@@ -222,9 +232,16 @@ std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const
   const double heave_us = heave_.update(r.depth - s.position.z(), -s.velocity.z(), p_.dt);
   ch[p_.channel_yaw - 1] = pwm(yaw_cmd);
   ch[p_.channel_heave - 1] = pwm(heave_us / 400.0);
-  // Constant surge while following; the aColor cannot hold station horizontally, it stops and holds depth.
+  // Constant surge while following; holding, the position PIDs (without gains it stops and holds its depth).
   ch[p_.channel_surge - 1] =
       r.mode == ReferenceMode::kFollow && p_.surge_command_for ? pwm(p_.surge_command_for(r.surge)) : 1500;
+  if (r.mode == ReferenceMode::kHold) {
+    const Eigen::Vector2d e = r.point.head<2>() - s.position.head<2>();
+    const Eigen::Vector2d v = toNed(s.velocity.head<2>(), s.yaw);
+    const Eigen::Vector2d f = toBody({north_.update(e.x(), -v.x(), p_.dt), east_.update(e.y(), -v.y(), p_.dt)}, s.yaw);
+    ch[p_.channel_surge - 1] = pwm(f.x());
+    ch[p_.channel_sway - 1] = pwm(f.y());
+  }
   return ch;
 }
 
@@ -253,6 +270,8 @@ const ParamTable<Girona500ControlParams>& Girona500ControlParams::table() {
       .number("cross_limit", &P::cross_limit, 0.0, 100.0, "m", "largest cross-track offset of the integral")
       .number("max_crab", &P::max_crab, 0.0, 1.5, "rad",
               "largest heading offset from guidance's toward the force demand in a cross current (0 = off)")
+      .number("hold_crab", &P::hold_crab, 0.0, 1.5, "rad",
+              "the same while holding a point (the spot after the find, the surface; 0 = off)")
       .number("crab_tf", &P::crab_tf, 0.0, 100.0, "s", "low-pass time constant of the force demand the crab follows")
       .number("crab_force", &P::crab_force, 1.0, 1000.0, "N",
               "sideways part of the force demand left to the sway thruster before the bow turns");
@@ -321,11 +340,13 @@ Girona500Out Girona500Controller::update(const VehicleState& s, const MotionRefe
 }
 
 void Girona500Controller::updateCrab(const MotionReference& r, const Eigen::Vector2d& f_ned) {
-  if (r.mode != ReferenceMode::kFollow || p_.max_crab <= 0.0) {  // holding a point: the heading guidance asks
+  const double limit = r.mode == ReferenceMode::kFollow ? p_.max_crab : p_.hold_crab;
+  if (r.mode != ReferenceMode::kFollow && r.mode != ReferenceMode::kHold) {
     force_lp_.setZero();
     crab_ = 0.0;
     return;
   }
+  // the demand is followed in both modes: a hold that passes through a moment of following keeps what it learnt
   force_lp_ += (p_.dt / (p_.crab_tf + p_.dt)) * (f_ned - force_lp_);
   // The bow turns from guidance's heading (which already turns toward the leg) toward the demand, only as far as
   // needed to leave the sway thruster at most crab_force of it. |along|: a demand that brakes (a following
@@ -335,7 +356,7 @@ void Girona500Controller::updateCrab(const MotionReference& r, const Eigen::Vect
   const double magnitude = force_lp_.norm();
   const double keep = magnitude > p_.crab_force ? std::asin(p_.crab_force / magnitude) : M_PI / 2;
   const double a = std::copysign(std::max(0.0, std::abs(beta) - keep), beta);
-  crab_ = std::clamp(a, -p_.max_crab, p_.max_crab);
+  crab_ = std::clamp(a, -limit, limit);
 }
 
 }  // namespace control

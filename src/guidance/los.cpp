@@ -93,9 +93,13 @@ void LosGuidance::clear() {
 bool LosGuidance::setPath(const std::vector<Eigen::Vector3d>& waypoints, bool resume,
                           const std::vector<bool>& detour) {
   // A replan of a path already finished (station keeping at its end) keeps holding when the end stays where it
-  // was: following the lead-in leg again from wherever the current had set the boat sent it round in circles.
-  const bool was_holding = resume && finished_ && !wp_.empty() && !waypoints.empty() &&
-                           (waypoints.back() - wp_.back()).norm() <= p_.min_leg_length + 1e-9;
+  // was: following the lead-in leg again from wherever the current had set the boat sent it round in circles. So
+  // does a new path that ends where the vehicle holds (horizontally): the AUV mission's ascent moves the held depth
+  // every half second, and each restart on the lead-in turned the hold into path following for a moment.
+  const bool same_end = !wp_.empty() && !waypoints.empty() &&
+                        (resume ? (waypoints.back() - wp_.back()).norm()
+                                : (waypoints.back() - wp_.back()).head<2>().norm()) <= p_.min_leg_length + 1e-9;
+  const bool was_holding = finished_ && same_end;
   clear();
   if (!detour.empty() && detour.size() != waypoints.size()) {
     counters_.increment("bad_path");

@@ -44,6 +44,7 @@ inline micron::SonarSettings readSettings(const ros_util::ParamReader& p) {
   s.sound_speed = p.number("sound_speed", s.sound_speed, -kAny, kAny);
   s.beam_width = deg2rad(p.number("beam_width_deg", rad2deg(s.beam_width), -kAny, kAny));
   s.geometry = readGeometry(p);
+  ros_util::readParams(p, micron::FourBitFormat::table(), s.four_bit);
   s.head_type = static_cast<std::uint8_t>(p.integer("head_type", s.head_type, 0, 255));
   s.mo_time = p.integer("mo_time", s.mo_time, 0, 1 << 20);
   s.reboot_on_start = p.flag("reboot_on_start", s.reboot_on_start);

@@ -100,13 +100,24 @@ std::uint8_t Message::type() const {
   return std::visit(V{}, body);
 }
 
-std::vector<std::uint8_t> HeadData::bins() const {
+const ParamTable<FourBitFormat>& FourBitFormat::table() {
+  using P = FourBitFormat;
+  static const ParamTable<P> t = ParamTable<P>()
+      .choice("four_bit_order", &P::order, {"high_first", "low_first"},
+              "4-bit data (adc8on off): which nibble of a byte is the nearer bin")
+      .integer("four_bit_scale", &P::scale, 16, 17, "4-bit data: each level times this (17: level 15 is 255)");
+  return t;
+}
+
+std::vector<std::uint8_t> HeadData::bins(const FourBitFormat& f) const {
   if (hd_ctrl & kAdc8On) return data;
+  const bool high_first = f.order != "low_first";
   std::vector<std::uint8_t> out;
   out.reserve(2 * data.size());
   for (std::uint8_t b : data) {
-    out.push_back(static_cast<std::uint8_t>((b >> 4) * 16));
-    out.push_back(static_cast<std::uint8_t>((b & 0x0F) * 16));
+    const int hi = b >> 4, lo = b & 0x0F;
+    out.push_back(static_cast<std::uint8_t>((high_first ? hi : lo) * f.scale));
+    out.push_back(static_cast<std::uint8_t>((high_first ? lo : hi) * f.scale));
   }
   return out;
 }

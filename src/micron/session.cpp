@@ -38,6 +38,7 @@ void SonarSettings::validate() const {
   requireRange("command_retry", command_retry, 0.05, 60.0);
   requireRange("alive_timeout", alive_timeout, 0.5, 60.0);
   requireRange("max_data_timeouts", max_data_timeouts, 1, 1000);
+  FourBitFormat::table().validate(four_bit);
   if (sector < 2.0 * kPi - 1e-9 && stepUnits() > radToUnits(sector))
     throw ConfigError("parameter 'step_deg' = " + std::to_string(rad2deg(step)) + " is larger than the sector");
   const double interval = 2.0 * range / sound_speed / bins / kAdIntervalS;
@@ -131,7 +132,7 @@ void Session::handle(const Message& m, double now, std::vector<Beam>& beams) {
     awaiting_ = false;
     timeouts_in_row_ = 0;
     Beam b;
-    b.intensities = h->bins();
+    b.intensities = h->bins(settings_.four_bit);
     if (b.intensities.empty()) return counters_.increment("empty_beams");
     b.bearing = settings_.geometry.bearingOf(h->bearing);
     b.beam_width = settings_.beam_width;

@@ -1,9 +1,13 @@
-// AUV mission: mission::AuvMission fed the sonar targets and guidance's status on a timer; publishes the path
-// it asks for (the coverage, then an empty path: stop), and the confirmed target on /target in map_ned with its
-// WGS84 position for the USV (relayed). Thin: parameters, messages, publishing.
+// AUV mission: mission::AuvMission fed the sonar targets, guidance's status, the navigation (/auv/odom), the USV
+// mission's status (relayed) and the safety supervisor's decision, on a timer; publishes the path it asks for (the
+// coverage, the hold at the find, the ascent, the hold at the surface), the confirmed and refined target on /target
+// in map_ned with its WGS84 position for the USV (relayed), and its status (relayed to the USV: its position at the
+// surface is where the USV recovers it). Thin: parameters, messages, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
 #include <offshore_gnc/GuidanceStatus.h>
+#include <offshore_gnc/SafetyState.h>
 #include <offshore_gnc/Target.h>
 #include <offshore_gnc/TargetArray.h>
 #include <pluginlib/class_list_macros.hpp>
@@ -12,6 +16,7 @@
 
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/mission/mission.h"
+#include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/ros/site.h"
@@ -43,11 +48,14 @@ class AuvMissionNodelet : public nodelet::Nodelet {
     status_pub_ = nh.advertise<MissionStatus>("mission/status", 10, true);
     targets_sub_ = nh.subscribe("sonar/targets", 10, &AuvMissionNodelet::onTargets, this);
     guidance_sub_ = nh.subscribe("guidance/status", 10, &AuvMissionNodelet::onGuidance, this);
+    odom_sub_ = nh.subscribe("odom", 10, &AuvMissionNodelet::onOdom, this);
+    safety_sub_ = nh.subscribe("safety/state", 10, &AuvMissionNodelet::onSafety, this);
+    usv_sub_ = nh.subscribe("/usv/mission/status", 10, &AuvMissionNodelet::onUsvStatus, this);  // relayed
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("auv_mission");
     updater_->add("mission", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
       s.summary(diagnostic_msgs::DiagnosticStatus::OK, mission::toString(mission_->phase()));
-      ros_util::addCounters(s, mission_->counters(), {"detection_not_finite"});
+      ros_util::addCounters(s, mission_->counters(), {"detection_not_finite", "target_resent"});
     });
     timer_ = nh.createTimer(ros::Duration(0.5), &AuvMissionNodelet::onTimer, this);
   }
@@ -72,12 +80,40 @@ class AuvMissionNodelet : public nodelet::Nodelet {
     publishOutputs();
   }
 
+  void onOdom(const nav_msgs::Odometry::ConstPtr& o) {
+    const VehicleState s = ros_util::stateFromOdom(*o);
+    mission_->onPose(s.position, s.yaw, o->header.stamp.toSec());
+  }
+
+  void onUsvStatus(const MissionStatus::ConstPtr& m) {
+    const auto phase = mission::usvPhaseFromString(m->phase);
+    if (!phase) {
+      NODELET_WARN_THROTTLE(10.0, "USV status with an unknown phase '%s' ignored", m->phase.c_str());
+      return;
+    }
+    mission_->onUsvStatus(*phase, {m->position.x, m->position.y}, {m->hold_point.x, m->hold_point.y},
+                          ros::Time::now().toSec());
+    publishOutputs();
+  }
+
+  void onSafety(const SafetyState::ConstPtr& s) {
+    if (!s->manual && s->action >= SafetyState::ACTION_SURFACE) {
+      mission_->onSafetySurface(ros::Time::now().toSec());
+      publishOutputs();
+    }
+  }
+
   void publishOutputs() {
     const auto path = mission_->takePath();
+    const auto phase = mission_->phase();
     if (path) {
       path_pub_.publish(mission_ros::toPath(*path, ros::Time::now()));
-      if (!path->empty()) NODELET_INFO("coverage started: %zu waypoints", path->size());
-      else if (mission_->phase() == mission::AuvPhase::NoTarget) NODELET_WARN("%s", mission_->detail().c_str());
+      if (phase == mission::AuvPhase::Coverage) NODELET_INFO("coverage started: %zu waypoints", path->size());
+    }
+    const bool changed = phase != logged_;
+    if (changed) {  // each phase once (the ascent sends a path every tick)
+      NODELET_INFO("%s: %s", mission::toString(phase), mission_->detail().c_str());
+      logged_ = phase;
     }
     if (const auto p = mission_->takeTarget()) {
       Target t;
@@ -95,19 +131,27 @@ class AuvMissionNodelet : public nodelet::Nodelet {
       target_pub_.publish(t);
       NODELET_INFO("%s (%.6f N %.6f E)", mission_->detail().c_str(), ll.lat_deg, ll.lon_deg);
     }
-    if (path) publishStatus();
+    if (changed) publishStatus();
   }
 
   void publishStatus() {
     const auto ph = mission_->phase();
     status_pub_.publish(mission_ros::status("auv", mission::toString(ph), mission_->detail(), mission_->finished(),
-                                            ph == mission::AuvPhase::TargetFound));
+                                            ph == mission::AuvPhase::Recovered, mission_ros::kNaN,
+                                            mission_->onStationSince(), position(), mission_->holdPoint(),
+                                            mission_->stationary()));
+  }
+
+  Eigen::Vector3d position() const {  // NaN before the first estimate
+    const auto& p = mission_->pose();
+    return p ? *p : Eigen::Vector3d::Constant(mission_ros::kNaN);
   }
 
   std::unique_ptr<mission::AuvMission> mission_;
   std::unique_ptr<geo::LocalNed> frame_;
+  mission::AuvPhase logged_ = mission::AuvPhase::Idle;
   ros::Publisher path_pub_, target_pub_, status_pub_;
-  ros::Subscriber targets_sub_, guidance_sub_;
+  ros::Subscriber targets_sub_, guidance_sub_, odom_sub_, safety_sub_, usv_sub_;
   ros::Timer timer_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
 };

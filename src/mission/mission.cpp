@@ -12,6 +12,68 @@ namespace mission {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+const Eigen::Vector3d kNoPoint3 = Eigen::Vector3d::Constant(kNaN);
+constexpr double kVaneTf = 30.0;  // [s] the weathervaned bow's averaging time (UsvMission::onPose)
+
+// holdPath at p's depth: guidance holds the end of a path, its depth too.
+std::vector<Eigen::Vector3d> holdPath3(const Eigen::Vector3d& p, double heading) {
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& w : holdPath(p.head<2>(), heading)) out.emplace_back(w.x(), w.y(), p.z());
+  return out;
+}
+
+// Distance of p from the segment a-b.
+double segmentDistance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d ab = b - a;
+  const double l2 = ab.squaredNorm();
+  const double k = l2 > 0.0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (a + k * ab - p).norm();
+}
+
+template <class Phase, std::size_t N>
+std::optional<Phase> phaseFromString(const std::string& s, const Phase (&all)[N]) {
+  for (Phase p : all)
+    if (s == toString(p)) return p;
+  return std::nullopt;
+}
+}  // namespace
+
+const char* toString(AuvPhase p) {
+  switch (p) {
+    case AuvPhase::Idle: return "IDLE";
+    case AuvPhase::Coverage: return "COVERAGE";
+    case AuvPhase::TargetFound: return "TARGET_FOUND";
+    case AuvPhase::NoTarget: return "NO_TARGET";
+    case AuvPhase::Ascent: return "ASCENT";
+    case AuvPhase::Surfaced: return "SURFACED";
+    case AuvPhase::Recovered: return "RECOVERED";
+  }
+  return "?";
+}
+
+const char* toString(UsvPhase p) {
+  switch (p) {
+    case UsvPhase::StationKeeping: return "STATION_KEEPING";
+    case UsvPhase::Transit: return "TRANSIT";
+    case UsvPhase::Arrived: return "ARRIVED";
+    case UsvPhase::Recovery: return "RECOVERY";
+    case UsvPhase::Recovered: return "RECOVERED";
+    case UsvPhase::Manual: return "MANUAL";
+    case UsvPhase::PeerLost: return "PEER_LOST";
+  }
+  return "?";
+}
+
+std::optional<AuvPhase> auvPhaseFromString(const std::string& s) {
+  static const AuvPhase all[] = {AuvPhase::Idle,    AuvPhase::Coverage, AuvPhase::TargetFound, AuvPhase::NoTarget,
+                                 AuvPhase::Ascent, AuvPhase::Surfaced, AuvPhase::Recovered};
+  return phaseFromString(s, all);
+}
+
+std::optional<UsvPhase> usvPhaseFromString(const std::string& s) {
+  static const UsvPhase all[] = {UsvPhase::StationKeeping, UsvPhase::Transit, UsvPhase::Arrived, UsvPhase::Recovery,
+                                 UsvPhase::Recovered,      UsvPhase::Manual,  UsvPhase::PeerLost};
+  return phaseFromString(s, all);
 }
 
 // ------------------------------------------------------------------------------------------------- AUV
@@ -41,7 +103,20 @@ const ParamTable<AuvMissionParams>& AuvMissionParams::table() {
       .integer("confirm_detections", &P::confirm_detections, 1, 100, "sonar sweeps that must see the same object")
       .number("confirm_radius", &P::confirm_radius, 0.1, 50.0, "m", "detections closer than this are one object")
       .number("detection_max_age", &P::detection_max_age, 1.0, 1e5, "s", "unconfirmed detections older are forgotten")
-      .number("start_delay", &P::start_delay, 0.0, 3600.0, "s", "the search starts this long after start-up");
+      .number("start_delay", &P::start_delay, 0.0, 3600.0, "s", "the search starts this long after start-up")
+      .number("hold_standoff", &P::hold_standoff, 0.0, 50.0, "m",
+              "after the find, hold at depth this far from the target on the line from the find, facing it")
+      .number("refine_distance", &P::refine_distance, 0.05, 50.0, "m",
+              "while holding, the refined target is resent once it moved this far from the one sent")
+      .number("hold_timeout", &P::hold_timeout, 1.0, 1e5, "s", "holding this long without the USV's arrival: ascend")
+      .number("usv_timeout", &P::usv_timeout, 1.0, 1e5, "s",
+              "holding without the USV's mission status this long (link lost, its stack dead): ascend")
+      .number("ascent_rate", &P::ascent_rate, 0.01, 2.0, "m/s", "the depth reference rises at most this fast")
+      .number("surface_depth", &P::surface_depth, 0.05, 5.0, "m", "shallower than this the AUV is at the surface")
+      .number("surface_clearance", &P::surface_clearance, 0.0, 500.0, "m",
+              "surface at least this far from where the USV holds or is bound by its last status (moving at depth first)")
+      .number("station_radius", &P::station_radius, 0.1, 50.0, "m",
+              "on station at its hold point, and stationary at the surface, within this");
   return t;
 }
 
@@ -50,17 +125,10 @@ void AuvMissionParams::validate() const {
   coverage.validate();
 }
 
-const char* toString(AuvPhase p) {
-  switch (p) {
-    case AuvPhase::Idle: return "IDLE";
-    case AuvPhase::Coverage: return "COVERAGE";
-    case AuvPhase::TargetFound: return "TARGET_FOUND";
-    case AuvPhase::NoTarget: return "NO_TARGET";
-  }
-  return "?";
+AuvMission::AuvMission(const AuvMissionParams& p)
+    : p_(p), hold_(kNoPoint3), detection_time_(kNaN), on_station_since_(kNaN), ascent_t_(kNaN), surfaced_t_(kNaN) {
+  p_.validate();
 }
-
-AuvMission::AuvMission(const AuvMissionParams& p) : p_(p), detection_time_(kNaN) { p_.validate(); }
 
 void AuvMission::tick(double t) {
   if (!ticked_) {
@@ -68,6 +136,100 @@ void AuvMission::tick(double t) {
     first_tick_ = t;
   }
   if (phase_ == AuvPhase::Idle && t - first_tick_ >= p_.start_delay) start(t);
+  if (phase_ == AuvPhase::NoTarget) ascend(t, "the search ended without a target");
+  if (phase_ == AuvPhase::TargetFound) {
+    std::ostringstream why;
+    if (t - found_t_ >= p_.hold_timeout) {
+      why << "held " << p_.hold_timeout << " s without the USV's arrival";
+      ascend(t, why.str());
+    } else if (t - std::max(found_t_, usv_t_) >= p_.usv_timeout) {
+      why << "no status from the USV for " << p_.usv_timeout << " s";
+      ascend(t, why.str());
+    }
+  }
+  if (phase_ != AuvPhase::Ascent) return;
+  if (clearing_) {  // first clear of the USV at depth: at its point, or as far from the USV (a loose hold gets there)
+    if (!pose_ || ((pose_->head<2>() - hold_.head<2>()).norm() > p_.station_radius &&
+                   (pose_->head<2>() - *usv_).norm() < p_.surface_clearance - p_.station_radius))
+      return;
+    clearing_ = false;
+    ramp_t_ = t;
+  }
+  double d = std::max(0.0, depth_ref_ - p_.ascent_rate * (t - ramp_t_));
+  ramp_t_ = t;
+  // a vehicle the safety supervisor already brought up is not sent down again (1 m: far beyond the depth
+  // controller's lag behind the ramp, which must not pull the ramp up after the vehicle)
+  if (pose_ && pose_->z() < d - 1.0) d = std::max(0.0, pose_->z());
+  if (d != depth_ref_) {
+    depth_ref_ = hold_.z() = d;
+    hold(hold_, t);
+  }
+  if (depth_ref_ <= 0.0 && pose_ && pose_->z() < p_.surface_depth) {
+    phase_ = AuvPhase::Surfaced;
+    surfaced_t_ = t;
+  }
+}
+
+void AuvMission::hold(const Eigen::Vector3d& point, double /*t*/) { path_due_ = holdPath3(point, hold_heading_); }
+
+void AuvMission::ascend(double t, const std::string& why, bool clear_of_usv) {
+  phase_ = AuvPhase::Ascent;
+  ascent_t_ = ramp_t_ = t;
+  why_ascent_ = why;
+  const Eigen::Vector3d at = pose_ ? *pose_ : hold_;
+  if (!at.allFinite()) {  // nowhere known to hold: up where it is, on the supervisor's surface hold
+    depth_ref_ = 0.0;
+    path_due_ = std::vector<Eigen::Vector3d>();
+    return;
+  }
+  depth_ref_ = std::max(0.0, at.z());
+  // up where it holds (the spot), or where it is when it was not holding one
+  Eigen::Vector2d up = hold_.allFinite() ? Eigen::Vector2d(hold_.head<2>()) : Eigen::Vector2d(at.head<2>());
+  const Eigen::Vector2d away = up - (usv_ ? *usv_ : up);
+  clearing_ = clear_of_usv && usv_ && away.norm() < p_.surface_clearance;
+  if (clearing_) {  // surface clear of the USV's hull: move away from it at depth first, facing the way
+    const Eigen::Vector2d dir = away.norm() > 1e-3 ? Eigen::Vector2d(away.normalized())
+                                                   : Eigen::Vector2d(std::cos(yaw_), std::sin(yaw_));
+    up = *usv_ + p_.surface_clearance * dir;
+    hold_heading_ = std::atan2(dir.y(), dir.x());
+  }
+  hold_ = Eigen::Vector3d(up.x(), up.y(), depth_ref_);
+  auto path = clearing_ ? guidance::straightLine({at.x(), at.y(), depth_ref_}, hold_) : std::vector<Eigen::Vector3d>();
+  if (path.size() >= 2) path_due_ = std::move(path);
+  else hold(hold_, t);
+}
+
+void AuvMission::onPose(const Eigen::Vector3d& ned, double yaw, double t) {
+  if (!ned.allFinite() || !std::isfinite(yaw)) {
+    counters_.increment("pose_not_finite");
+    return;
+  }
+  pose_ = ned;
+  yaw_ = yaw;
+  if (phase_ == AuvPhase::TargetFound && std::isnan(on_station_since_) &&
+      (ned.head<2>() - hold_.head<2>()).norm() <= p_.station_radius)
+    on_station_since_ = t;
+}
+
+void AuvMission::onUsvStatus(UsvPhase phase, const Eigen::Vector2d& usv_ned, const Eigen::Vector2d& usv_station,
+                             double t) {
+  usv_t_ = t;
+  usv_phase_ = phase;
+  if (usv_station.allFinite()) usv_ = usv_station;
+  else if (usv_ned.allFinite()) usv_ = usv_ned;
+  const bool arrived = phase == UsvPhase::Arrived || phase == UsvPhase::Recovery || phase == UsvPhase::Recovered;
+  if (phase_ == AuvPhase::TargetFound && arrived) ascend(t, "the USV has arrived");
+  if (phase_ == AuvPhase::Surfaced && phase == UsvPhase::Recovered) phase_ = AuvPhase::Recovered;
+}
+
+void AuvMission::onSafetySurface(double t) {
+  if (phase_ == AuvPhase::TargetFound || phase_ == AuvPhase::NoTarget)
+    ascend(t, "the safety supervisor surfaced it", false);
+}
+
+bool AuvMission::stationary() const {
+  return (phase_ == AuvPhase::Surfaced || phase_ == AuvPhase::Recovered) && pose_ &&
+         (pose_->head<2>() - hold_.head<2>()).norm() <= p_.station_radius;
 }
 
 void AuvMission::start(double t) {
@@ -76,8 +238,6 @@ void AuvMission::start(double t) {
   start_time_ = t;
   path_due_ = coveragePath(p_.coverage);
 }
-
-void AuvMission::stop() { path_due_ = std::vector<Eigen::Vector3d>(); }  // guidance idle: thrusters off
 
 void AuvMission::onGuidance(guidance::Mode mode, double t) {
   if (phase_ != AuvPhase::Coverage) return;
@@ -102,8 +262,12 @@ bool AuvMission::onDetection(const Eigen::Vector3d& p, double t) {
     counters_.increment("detection_not_finite");
     return false;
   }
+  if (phase_ == AuvPhase::TargetFound) {
+    refine(p, t);
+    return false;
+  }
   if (phase_ != AuvPhase::Coverage) {
-    counters_.increment("detection_outside_coverage");
+    counters_.increment("detection_outside_search");
     return false;
   }
   counters_.increment("detections");
@@ -124,17 +288,49 @@ bool AuvMission::onDetection(const Eigen::Vector3d& p, double t) {
   best->n += 1;
   best->last_t = t;
   if (best->n < p_.confirm_detections) return false;
-  target_ = target_due_ = best->mean();
+  confirmed_ = *best;
+  target_ = target_due_ = target_sent_ = best->mean();
   detection_time_ = t - start_time_;
+  found_t_ = t;
   phase_ = AuvPhase::TargetFound;
-  stop();
+  // Keep the spot: hold_standoff from the target on the line from where the vehicle is, facing it (the sonar's
+  // sector looks ahead: it goes on seeing the target), at the depth it searched at.
+  const Eigen::Vector3d& tg = *target_;
+  const Eigen::Vector2d from = pose_ ? Eigen::Vector2d(pose_->head<2>() - tg.head<2>()) : Eigen::Vector2d::Zero();
+  const Eigen::Vector2d dir = from.norm() > 1e-3 ? Eigen::Vector2d(from.normalized()) : Eigen::Vector2d::Zero();
+  hold_heading_ = from.norm() > 1e-3 ? std::atan2(-dir.y(), -dir.x()) : yaw_;
+  const Eigen::Vector2d h = tg.head<2>() + p_.hold_standoff * dir;
+  hold_ = Eigen::Vector3d(h.x(), h.y(), pose_ ? pose_->z() : p_.coverage.depth);
+  hold(hold_, t);
   return true;
 }
 
-void AuvMission::onCoverageFinished(double /*t*/) {
+void AuvMission::refine(const Eigen::Vector3d& p, double /*t*/) {
+  if ((p - *target_).norm() > p_.confirm_radius) {  // another object, or clutter: the target stays as it is
+    counters_.increment("detection_other_object");
+    return;
+  }
+  confirmed_.sum += p;
+  confirmed_.n += 1;
+  target_ = confirmed_.mean();
+  counters_.increment("target_refinements");
+  if ((*target_ - *target_sent_).norm() >= p_.refine_distance) {
+    target_due_ = target_sent_ = target_;
+    counters_.increment("target_resent");
+  }
+}
+
+void AuvMission::onCoverageFinished(double t) {
   if (phase_ != AuvPhase::Coverage) return;
   phase_ = AuvPhase::NoTarget;
-  stop();
+  found_t_ = t;
+  hold_heading_ = yaw_;
+  if (pose_) {  // keep where it is until the next tick sends it up
+    hold_ = *pose_;
+    hold(hold_, t);
+  } else {
+    path_due_ = std::vector<Eigen::Vector3d>();
+  }
 }
 
 std::string AuvMission::detail() const {
@@ -144,10 +340,22 @@ std::string AuvMission::detail() const {
     case AuvPhase::Coverage: os << "searching, " << clusters_.size() << " unconfirmed candidate(s)"; break;
     case AuvPhase::TargetFound:
       os << "target confirmed at N " << (*target_)(0) << " E " << (*target_)(1) << " D " << (*target_)(2)
-         << " after " << detection_time_ << " s; thrusters stopped";
+         << " after " << detection_time_ << " s (" << confirmed_.n << " detections); holding at N " << hold_.x()
+         << " E " << hold_.y() << " D " << hold_.z() << ", " << p_.hold_standoff << " m from it";
       break;
-    case AuvPhase::NoTarget: os << "coverage finished without a confirmed detection; thrusters stopped"; break;
+    case AuvPhase::NoTarget: os << "coverage finished without a confirmed detection"; break;
+    case AuvPhase::Ascent:
+      os << "ascending (" << why_ascent_ << "): ";
+      if (clearing_) os << "first clear of the USV at depth, to N " << hold_.x() << " E " << hold_.y();
+      else os << "depth reference " << depth_ref_ << " m, rising at " << p_.ascent_rate << " m/s";
+      break;
+    case AuvPhase::Surfaced:
+      os << "at the surface, holding at N " << hold_.x() << " E " << hold_.y() << (stationary() ? "" : " (off it)")
+         << "; waiting to be recovered";
+      break;
+    case AuvPhase::Recovered: os << "recovered: the USV holds beside it"; break;
   }
+  if (noTarget() && phase_ != AuvPhase::NoTarget) os << "; the search ended without a confirmed detection";
   return os.str();
 }
 
@@ -164,22 +372,16 @@ const ParamTable<UsvMissionParams>& UsvMissionParams::table() {
       .number("manual_timeout", &P::manual_timeout, 0.05, 60.0, "s",
               "manual control is released this long after its last command")
       .number("station_radius", &P::station_radius, 0.1, 100.0, "m",
-              "arrived, the USV is on station once this close to its station point (the hold counts from there)");
+              "arrived, the USV is on station once this close to its station point (the hold counts from there)")
+      .number("recovery_distance", &P::recovery_distance, 0.5, 100.0, "m",
+              "recovering, the bow holds this far from the surfaced AUV, downstream of it")
+      .number("recovery_replan", &P::recovery_replan, 0.1, 100.0, "m",
+              "the recovery is planned again when the AUV's reported position moved this far")
+      .number("settle_time", &P::settle_time, 0.0, 3600.0, "s", "both vehicles stationary this long: RECOVERED");
   return t;
 }
 
 void UsvMissionParams::validate() const { table().validate(*this, "mission/"); }
-
-const char* toString(UsvPhase p) {
-  switch (p) {
-    case UsvPhase::StationKeeping: return "STATION_KEEPING";
-    case UsvPhase::Transit: return "TRANSIT";
-    case UsvPhase::Arrived: return "ARRIVED";
-    case UsvPhase::Manual: return "MANUAL";
-    case UsvPhase::PeerLost: return "PEER_LOST";
-  }
-  return "?";
-}
 
 std::vector<Eigen::Vector2d> holdPath(const Eigen::Vector2d& p, double heading, double lead_in) {
   if (!p.allFinite() || !std::isfinite(heading) || !(lead_in > 0.0)) return {};
@@ -192,7 +394,9 @@ std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a) {
                              a.spacing, a.depth);
 }
 
-UsvMission::UsvMission(const UsvMissionParams& p) : p_(p), distance_to_go_(kNaN), on_station_since_(kNaN) {
+UsvMission::UsvMission(const UsvMissionParams& p)
+    : p_(p), distance_to_go_(kNaN), on_station_since_(kNaN), settled_since_(kNaN), recovered_t_(kNaN),
+      auv_still_since_(kNaN) {
   p_.validate();
 }
 
@@ -203,8 +407,19 @@ void UsvMission::onPose(const Eigen::Vector2d& ned, double heading, double t) {
   }
   pose_ = ned;
   heading_ = heading;
+  // Dynamic positioning weathervanes the bow into the current (docs/guidance-control.md), swinging about it for a
+  // minute after an arrival (+-40 degrees seen): the mean over kVaneTf is the recovery's "into the current".
+  const Eigen::Vector2d bow(std::cos(heading), std::sin(heading));
+  if (phase_ != UsvPhase::StationKeeping && phase_ != UsvPhase::Arrived && phase_ != UsvPhase::PeerLost)
+    vane_ = kNoPoint;
+  else if (!vane_.allFinite())
+    vane_ = bow;
+  else
+    vane_ += std::clamp((t - pose_t_) / kVaneTf, 0.0, 1.0) * (bow - vane_);
+  pose_t_ = t;
   const auto& held = hold_point_ ? hold_point_ : station_;
-  if (phase_ == UsvPhase::Arrived && held && std::isnan(on_station_since_) && (ned - *held).norm() <= p_.station_radius)
+  if ((phase_ == UsvPhase::Arrived || phase_ == UsvPhase::Recovery) && held && std::isnan(on_station_since_) &&
+      (ned - *held).norm() <= p_.station_radius)
     on_station_since_ = t;
   if (!station_) {  // station keeping (dynamic positioning) where the mission starts, until a target arrives
     station_ = ned;
@@ -215,7 +430,12 @@ void UsvMission::onPose(const Eigen::Vector2d& ned, double heading, double t) {
 
 void UsvMission::onGuidance(guidance::Mode mode, double distance_to_go, double t, const Eigen::Vector2d& hold_point) {
   distance_to_go_ = distance_to_go;
-  if (mode == guidance::Mode::kStationKeeping && hold_point.allFinite()) hold_point_ = hold_point;
+  // Guidance's hold point stands for the station (moved off an obstacle's box by a few metres at most): one farther
+  // is the last path's, held for a step before a new one takes (a hold path ends in station keeping at once), and it
+  // put the USV "on station" at its old point.
+  if (mode == guidance::Mode::kStationKeeping && hold_point.allFinite() &&
+      (!station_ || (hold_point - *station_).norm() < 0.5 * p_.waypoint_spacing))
+    hold_point_ = hold_point;
   if (phase_ != UsvPhase::Transit) return;
   if (mode == guidance::Mode::kFollowPath) following_ = true;
   if (following_ && mode == guidance::Mode::kStationKeeping) onPathFinished(t);
@@ -232,7 +452,9 @@ std::optional<std::vector<Eigen::Vector2d>> UsvMission::takePath() {
   return p;
 }
 
-double UsvMission::distanceToGo() const { return phase() == UsvPhase::Transit ? distance_to_go_ : kNaN; }
+double UsvMission::distanceToGo() const {
+  return phase() == UsvPhase::Transit || phase() == UsvPhase::Recovery ? distance_to_go_ : kNaN;
+}
 
 bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
   onPeerAlive(t);
@@ -270,6 +492,7 @@ bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
     station_ = *pose_;
     path_.clear();
     phase_ = UsvPhase::Arrived;
+    arrived_ = true;
     ++path_version_;
     path_due_ = holdPath(*station_, heading_);
     return false;
@@ -289,7 +512,114 @@ bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
 }
 
 void UsvMission::onPathFinished(double /*t*/) {
-  if (phase_ == UsvPhase::Transit) phase_ = UsvPhase::Arrived;
+  if (phase_ != UsvPhase::Transit) return;
+  phase_ = UsvPhase::Arrived;
+  arrived_ = true;
+}
+
+void UsvMission::onAuvStatus(AuvPhase phase, const Eigen::Vector3d& auv_ned, bool stationary, double t) {
+  onPeerAlive(t);
+  auv_phase_ = phase;
+  // stationary since when, in reports that kept coming (a gap of half the settle time says nothing of it)
+  if (!stationary) auv_still_since_ = kNaN;
+  else if (!auv_stationary_ || std::isnan(auv_still_since_) || t - auv_t_ > 0.5 * p_.settle_time) auv_still_since_ = t;
+  auv_stationary_ = stationary;
+  auv_t_ = t;
+  if (auv_ned.head<2>().allFinite()) auv_pos_ = auv_ned.head<2>();
+  else counters_.increment("auv_position_not_finite");
+  recover(t);
+}
+
+void UsvMission::setPath(std::vector<Eigen::Vector2d> path) {
+  path_ = path;
+  ++path_version_;
+  path_due_ = std::move(path);
+  hold_point_.reset();
+  following_ = false;
+  on_station_since_ = kNaN;
+}
+
+void UsvMission::recover(double t) {
+  if (!pose_) return;
+  const bool surfaced = auv_phase_ && (*auv_phase_ == AuvPhase::Surfaced || *auv_phase_ == AuvPhase::Recovered) &&
+                        auv_pos_.allFinite();
+  if ((phase_ == UsvPhase::Arrived || phase_ == UsvPhase::StationKeeping) && surfaced) {
+    phase_ = UsvPhase::Recovery;
+    // the side away from the current: the dynamic positioning has turned the bow into it, so downstream is astern;
+    // without a current any side is as good
+    recovery_axis_ = vane_.norm() > 1e-3 ? Eigen::Vector2d(vane_.normalized())
+                                         : Eigen::Vector2d(std::cos(heading_), std::sin(heading_));
+    planRecovery(t);
+    return;
+  }
+  if (phase_ != UsvPhase::Recovery) return;
+  // a surfaced AUV moves: planned again once it moved recovery_replan, or at once when it stops holding its point
+  // while the USV is close to it (back to the run-in)
+  if (surfaced && ((auv_pos_ - auv_planned_).norm() > p_.recovery_replan || (alongside_ && !auv_stationary_)))
+    planRecovery(t);
+  if (!alongside_ && auvHeld(t) && (*pose_ - run_in_).norm() <= p_.recovery_distance) {  // at the run-in: close in
+    alongside_ = true;
+    planRecovery(t);
+  }
+  if (!alongside_) return;
+  const Eigen::Vector2d& held = hold_point_ ? *hold_point_ : recovery_point_;
+  const bool here = (*pose_ - held).norm() <= p_.station_radius;
+  const bool auv_still = auv_stationary_ && t - auv_t_ <= p_.settle_time;  // a stale report says nothing
+  if (!here || !auv_still) {
+    settled_since_ = kNaN;
+    return;
+  }
+  if (std::isnan(settled_since_)) settled_since_ = t;
+  if (t - settled_since_ >= p_.settle_time) {
+    phase_ = UsvPhase::Recovered;
+    recovered_t_ = t;
+  }
+}
+
+bool UsvMission::auvHeld(double t) const {
+  return auv_stationary_ && t - auv_still_since_ >= p_.settle_time && t - auv_t_ <= p_.settle_time;
+}
+
+void UsvMission::planRecovery(double t) {
+  const Eigen::Vector2d auv = auv_pos_, up = recovery_axis_, u = *pose_;
+  const double off = p_.recovery_distance + bow_reach_;  // the reference point's distance: the bow at recovery_distance
+  const double heading = std::atan2(up.y(), up.x());     // bow on to the AUV
+  recovery_point_ = auv - off * up;                       // downstream of it
+  run_in_ = recovery_point_ - p_.waypoint_spacing * up;
+  auv_planned_ = auv;
+  settled_since_ = kNaN;
+  // Already downstream and close (a replan, or it arrived there): close in along the axis at once. Otherwise the
+  // run-in first: guidance cuts every waypoint but the last (the USV's 16 m circle of acceptance), and dynamic
+  // positioning's straight line to a point 10 m away passed the AUV with the bow 1.9 m off it.
+  // Closing in only to an AUV that holds its point (auvHeld): one that moves is kept at the run-in's distance, the
+  // run-in moved with it (a Girona500 that could not hold against 0.5 m/s drifted onto the USV holding downstream of
+  // it and touched the hull; an aColor swinging +-3 m about its point came within 0.3 m of it).
+  const Eigen::Vector2d from_point = u - recovery_point_;
+  alongside_ = auvHeld(t) && (alongside_ || (from_point.dot(up) <= 0.0 && from_point.norm() <= p_.waypoint_spacing));
+  if (alongside_) {
+    station_ = recovery_point_;
+    setPath(holdPath(recovery_point_, heading));
+    return;
+  }
+  std::vector<Eigen::Vector2d> corners{u};
+  if (segmentDistance(u, run_in_, auv) < off) {
+    // the way to the run-in passes the AUV closer than the recovery point: round it on the USV's side, abeam of it
+    // as far off as the recovery point (guidance's 16 m circle cuts that corner: the USV joins the line from there
+    // to the run-in, which passes the AUV at 0.9 of that)
+    const Eigen::Vector2d across(-up.y(), up.x());
+    const double side = (u - auv).dot(across) >= 0.0 ? 1.0 : -1.0;
+    corners.push_back(auv + side * off * across);
+  }
+  corners.push_back(run_in_);
+  std::vector<Eigen::Vector2d> path{u};
+  for (std::size_t i = 1; i < corners.size(); ++i) {
+    const auto leg = guidance::straightLine({corners[i - 1].x(), corners[i - 1].y(), 0.0},
+                                            {corners[i].x(), corners[i].y(), 0.0}, p_.waypoint_spacing);
+    for (std::size_t k = 1; k < leg.size(); ++k) path.push_back(leg[k].head<2>());
+  }
+  station_ = run_in_;
+  if (path.size() < 2) path = holdPath(run_in_, heading);
+  setPath(std::move(path));
 }
 
 void UsvMission::onManual(bool active, double /*t*/) {
@@ -311,6 +641,7 @@ void UsvMission::tick(double t) {
   if (manual_ && t - last_manual_ > p_.manual_timeout && last_manual_ > -1e300) onManual(false, t);
   // Before a target came, a silent AUV side means the mission cannot go on: hold position and say so.
   if (phase_ == UsvPhase::StationKeeping && !target_ && t - last_peer_ > p_.peer_timeout) phase_ = UsvPhase::PeerLost;
+  recover(t);
 }
 
 std::string UsvMission::detail() const {
@@ -322,7 +653,18 @@ std::string UsvMission::detail() const {
       os << "transit to stand-off point N " << (*station_)(0) << " E " << (*station_)(1) << " (" << path_.size()
          << " waypoints)";
       break;
-    case UsvPhase::Arrived: os << "arrived; station keeping " << p_.standoff << " m from the target"; break;
+    case UsvPhase::Arrived:
+      os << "arrived; station keeping " << p_.standoff << " m from the target, waiting for the AUV at the surface";
+      break;
+    case UsvPhase::Recovery:
+      os << "recovering the AUV at N " << auv_planned_.x() << " E " << auv_planned_.y() << ": "
+         << (alongside_ ? "closing in to" : "run-in to") << " N " << station_->x() << " E " << station_->y()
+         << ", then the bow " << p_.recovery_distance << " m off it" << (std::isnan(settled_since_) ? "" : "; both stationary");
+      break;
+    case UsvPhase::Recovered:
+      os << "recovered: holding " << p_.recovery_distance << " m off the AUV's bow-on at N " << recovery_point_.x()
+         << " E " << recovery_point_.y();
+      break;
     case UsvPhase::Manual: break;  // phase_ never holds Manual: manual_ overlays it
     case UsvPhase::PeerLost:
       os << "no sign of the AUV side for more than " << p_.peer_timeout << " s; holding position";

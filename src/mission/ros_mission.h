@@ -51,10 +51,18 @@ inline visualization_msgs::MarkerArray targetMarker(double north, double east, d
   return a;
 }
 
+inline geometry_msgs::Point point(double north, double east, double down = 0.0) {
+  geometry_msgs::Point p;
+  p.x = north;
+  p.y = east;
+  p.z = down;
+  return p;
+}
+
+// The status; position and hold point in map_ned (NaN when unknown), as the other vehicle reads them.
 inline MissionStatus status(const std::string& vehicle, const std::string& phase, const std::string& detail,
-                            bool finished, bool success,
-                            double distance_to_go = std::numeric_limits<double>::quiet_NaN(),
-                            double on_station_since = std::numeric_limits<double>::quiet_NaN()) {
+                            bool finished, bool success, double distance_to_go, double on_station_since,
+                            const Eigen::Vector3d& position, const Eigen::Vector3d& hold_point, bool stationary) {
   MissionStatus s;
   s.header.stamp = ros::Time::now();
   s.vehicle = vehicle;
@@ -64,8 +72,13 @@ inline MissionStatus status(const std::string& vehicle, const std::string& phase
   s.success = success;
   s.distance_to_go = distance_to_go;
   s.on_station_since = on_station_since;
+  s.position = point(position.x(), position.y(), position.z());
+  s.hold_point = point(hold_point.x(), hold_point.y(), hold_point.z());
+  s.stationary = stationary;
   return s;
 }
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace mission_ros
 }  // namespace offshore_gnc

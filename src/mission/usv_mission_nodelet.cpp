@@ -1,7 +1,8 @@
-// USV mission: mission::UsvMission fed the navigation pose, /target (relayed from the AUV), guidance's status,
-// manual commands and the relay's link status; publishes the path it asks for (station keeping where it
-// starts, then the straight transit with a waypoint every 10 m: the SBB planner in guidance inserts the
-// avoidance), its status and the received target for rviz. Thin: parameters, messages, publishing.
+// USV mission: mission::UsvMission fed the navigation pose, /target and the AUV mission's status (both relayed from
+// the AUV), guidance's status, manual commands and the relay's link status; publishes the path it asks for (station
+// keeping where it starts, the straight transit with a waypoint every 10 m, the recovery beside the surfaced AUV:
+// the SBB planner in guidance inserts the avoidance), its status (relayed to the AUV: its arrival starts the AUV's
+// ascent) and the received target for rviz. Thin: parameters, messages, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
@@ -18,6 +19,7 @@
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/safety/supervisor.h"
+#include "offshore_gnc/sim/contact.h"
 #include "ros_mission.h"
 
 namespace offshore_gnc {
@@ -36,6 +38,13 @@ class UsvMissionNodelet : public nodelet::Nodelet {
       safety::SupervisorConfig sc = safety::usvDefaults();
       ros_util::readParams(ros_util::ParamReader(ros::NodeHandle(nh, "safety")), safety::SupervisorConfig::table(), sc);
       if (!sc.region.empty()) mission_->setRegion(safety::Region::fromList(sc.region));
+      // the recovery distance is the bow's: the hull's outline of the vehicle config (/usv/vehicle/outline)
+      sim::HullFootprint hull;
+      ros_util::readParams(ros_util::ParamReader(nh), sim::HullFootprint::table(), hull);
+      hull.validate();
+      double bow = 0.0;
+      for (std::size_t i = 0; i + 1 < hull.outline.size(); i += 2) bow = std::max(bow, hull.outline[i]);
+      mission_->setBowReach(bow);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -48,6 +57,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     guidance_sub_ = nh.subscribe("guidance/status", 10, &UsvMissionNodelet::onGuidance, this);
     manual_sub_ = nh.subscribe("manual_cmd", 10, &UsvMissionNodelet::onManual, this);
     link_sub_ = nh.subscribe("/relay/link_status", 10, &UsvMissionNodelet::onLink, this);
+    auv_sub_ = nh.subscribe("/auv/mission/status", 10, &UsvMissionNodelet::onAuvStatus, this);  // relayed
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("usv_mission");
     updater_->add("mission", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
@@ -109,24 +119,51 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     if (l->up) mission_->onPeerAlive(ros::Time::now().toSec());
   }
 
+  void onAuvStatus(const MissionStatus::ConstPtr& m) {
+    const auto phase = mission::auvPhaseFromString(m->phase);
+    if (!phase) {
+      NODELET_WARN_THROTTLE(10.0, "AUV status with an unknown phase '%s' ignored", m->phase.c_str());
+      return;
+    }
+    const auto before = mission_->phase();
+    mission_->onAuvStatus(*phase, {m->position.x, m->position.y, m->position.z}, m->stationary,
+                          ros::Time::now().toSec());
+    afterChange(before);
+  }
+
+  void afterChange(mission::UsvPhase before) {
+    publishPath();
+    if (mission_->phase() != before) {
+      NODELET_INFO("%s: %s", mission::toString(mission_->phase()), mission_->detail().c_str());
+      publishStatus();
+    }
+  }
+
   void onTimer(const ros::TimerEvent&) {
     const ros::Time now = ros::Time::now();
     if (now.isZero()) return;
+    const auto before = mission_->phase();
     mission_->tick(now.toSec());
+    afterChange(before);
     publishStatus();
     updater_->update();
   }
 
   void publishStatus() {
     const auto ph = mission_->phase();
-    status_pub_.publish(mission_ros::status("usv", mission::toString(ph), mission_->detail(), mission_->finished(),
-                                            ph == mission::UsvPhase::Arrived, mission_->distanceToGo(),
-                                            mission_->onStationSince()));
+    const auto& pose = mission_->pose();
+    const auto& station = mission_->stationPoint();
+    const double nan = mission_ros::kNaN;
+    status_pub_.publish(mission_ros::status(
+        "usv", mission::toString(ph), mission_->detail(), mission_->finished(), ph == mission::UsvPhase::Recovered,
+        mission_->distanceToGo(), mission_->onStationSince(),
+        pose ? Eigen::Vector3d(pose->x(), pose->y(), 0.0) : Eigen::Vector3d::Constant(nan),
+        station ? Eigen::Vector3d(station->x(), station->y(), 0.0) : Eigen::Vector3d::Constant(nan), false));
   }
 
   std::unique_ptr<mission::UsvMission> mission_;
   ros::Publisher path_pub_, status_pub_, markers_pub_;
-  ros::Subscriber target_sub_, odom_sub_, guidance_sub_, manual_sub_, link_sub_;
+  ros::Subscriber target_sub_, odom_sub_, guidance_sub_, manual_sub_, link_sub_, auv_sub_;
   ros::Timer timer_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
 };

@@ -20,6 +20,7 @@ def test_wilson_interval():
     ({"success": True, "outcome": "success"}, 0, "success"),
     ({"success": False, "outcome": "collision"}, 1, "collision"),
     ({"success": False, "outcome": "off_station"}, 1, "off_station"),
+    ({"success": False, "outcome": "auv_adrift"}, 1, "auv_adrift"),  # the AUV not recovered
     (None, 2, "stack_died"),                                        # refused its scenario: never ran
     ({"success": False, "outcome": "timeout"}, -11, "stack_died"),  # crashed
     ({"success": True, "outcome": "USV holds position"}, 0, "stack_died"),  # not a class: not a run to count

@@ -19,7 +19,7 @@ MIN_PIXELS = 30  # of each colour in rviz's 3-D view (the job's Screenshots.MIN_
 # boat, arriving, makes one 2 m loop about its point); the margins are for a loaded machine.
 MAX_USV_RMSE_M = 1.2
 MAX_WAIT_DRIFT_M = 3.0
-MAX_HOLD_P95_M = 1.5
+MAX_HOLD_P95_M = 2.0  # now at the target and beside the AUV, each from on station (ROS-free seeds 1-5: 0.75-1.29 m)
 MAX_HOLD_DRIFT_M = 25.0  # the USV holding position after the AUV is gone (docs/mission.md)
 MAX_NAV_RMSE_M = 1.0     # the AUV's USBL navigation against its truth, during its mission (issue 16)
 MAX_AUV_RMSE_M = 0.4     # the AUV's true cross-track from the first waypoint (thesis 0.23 m; measured 0.20 m)
@@ -29,6 +29,14 @@ MAX_AUV_RMSE_M = 0.4     # the AUV's true cross-track from the first waypoint (t
 # has drifted 100 m away: 2 of 9, one of them over the goal), navigation 0.58-0.72 m, target 0.44-1.15 m (8 runs
 # with every figure; docs/guidance-control.md).
 ACOLOR_MAX_AUV_RMSE_M = 1.2
+# After the find (issue 36, docs/mission.md "Recovery"): the AUV holds within 2 m of its point, the USV's hull ends
+# 1-5 m off it and never came closer than 1 m. ROS-free seeds 1-5 (2026-12-04): hold 0.85-1.54 m, hull at the end
+# 3.41-4.42 m, never closer than 3.41 m, 166-169 s from the find to RECOVERED.
+MAX_AUV_HOLD_M = 2.0
+RECOVERY_DISTANCE_M = (1.0, 5.0)
+MIN_AUV_CLEARANCE_M = 1.0
+USV_TIMEOUT_S = 30.0  # config/mission/auv.yaml (mission::AuvMissionParams): no USV status this long, it comes up
+MAX_AUV_SURFACE_M = 1.5  # holding at the surface without the USV (no USBL fixes: the DVL and the AHRS alone)
 ACOLOR_MAX_NAV_RMSE_M = 0.9
 ACOLOR_MAX_TARGET_ERROR_M = 1.5
 
@@ -43,8 +51,15 @@ def run(scenario, out, *extra):
 def test_default_mission_succeeds(tmp_path):
     r, m = run("pyhajarvi.yaml", tmp_path / "default", "--screenshot")
     assert r.returncode == 0, r.stdout[-3000:]
-    assert m["success"] is True
-    assert m["usv_final_phase"] == "ARRIVED" and m["auv_final_phase"] == "TARGET_FOUND"
+    assert m["success"] is True and m["recovered"] is True
+    # the job ends on the USV's RECOVERED; the AUV says RECOVERED once that status has crossed the relay
+    assert m["usv_final_phase"] == "RECOVERED" and m["auv_final_phase"] in ("SURFACED", "RECOVERED"), m
+    assert m["auv_hold_excursion_m"] is not None and m["auv_hold_excursion_m"] <= MAX_AUV_HOLD_M, m
+    lo, hi = RECOVERY_DISTANCE_M
+    assert m["recovery_distance_m"] is not None and lo <= m["recovery_distance_m"] <= hi, m
+    assert m["usv_auv_min_clearance_m"] is not None and m["usv_auv_min_clearance_m"] >= MIN_AUV_CLEARANCE_M, m
+    assert m["find_to_recovery_s"] is not None and m["found_at_s"] < m["ascent_at_s"] < m["surfaced_at_s"] \
+        < m["recovered_at_s"], m
     assert m["target_error_m"] is not None and m["target_error_m"] < MAX_TARGET_ERROR_M, m
     assert m["min_clearance_m"] is not None and m["min_clearance_m"] > MIN_CLEARANCE_M, m
     assert m["usv_xte_est_samples"] > 0 and m["usv_xte_est_rmse_m"] is not None and m["usv_xte_est_rmse_m"] < MAX_USV_RMSE_M, m
@@ -71,9 +86,13 @@ def test_acolor_mission_succeeds_on_usbl_at_another_site(tmp_path):
     """The aColor as its own vehicle: Table 4.2's LOS with R = 3 L_AUV, its yaw and heave PIDs, the constant surge
     PWM for guidance's speed, navigation on USBL fixes and its commands (no DVL). At Hobart (southern and eastern
     hemispheres): the scenario's origin reaches every node of both vehicles, no vehicle file names a site."""
-    r, m = run("hobart.yaml", tmp_path / "acolor", "--auv-model", "acolor")
-    assert r.returncode == 0, r.stdout[-3000:]
-    assert m["success"] is True and m["auv_final_phase"] == "TARGET_FOUND", m
+    r, m = run("hobart.yaml", tmp_path / "acolor", "--auv-model", "acolor", "--max-sim-time", "700")
+    # Its hold on USBL fixes alone is loose (config/control/acolor_sim.yaml): at the surface it does not stay within
+    # the mission's 1 m for the settle time, so the USV keeps its run-in distance and never calls it recovered
+    # (ROS-free seeds 1-5: auv_adrift every time, the hull 3.3-5.2 m off it at the closest). Safe, and said so.
+    assert r.returncode == 1, r.stdout[-3000:]
+    assert m["outcome"] == "auv_adrift" and m["auv_final_phase"] == "SURFACED", m
+    assert m["usv_auv_min_clearance_m"] is None or m["usv_auv_min_clearance_m"] >= MIN_AUV_CLEARANCE_M, m
     assert m["site"]["latitude"] == -42.8821 and m["site"]["longitude"] == 147.3514, m["site"]
     assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
     assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < ACOLOR_MAX_NAV_RMSE_M, m
@@ -86,12 +105,12 @@ def test_acolor_mission_succeeds_on_usbl_at_another_site(tmp_path):
     assert counts["/auv/rc_channels"] > 1000 and counts["/auv/thruster_setpoints"] == 0, counts
 
 
-def test_no_target_scenario_ends_with_no_target(tmp_path):
+def test_no_target_scenario_ends_with_the_auv_recovered(tmp_path):
     r, m = run("no_target.yaml", tmp_path / "none")
-    assert r.returncode == 0, r.stdout[-3000:]  # the expected outcome of this scenario
-    assert m["auv_final_phase"] == "NO_TARGET"
-    assert m["usv_final_phase"] in ("STATION_KEEPING", "PEER_LOST")
+    assert r.returncode == 0, r.stdout[-3000:]  # the expected outcome of this scenario: no target, the AUV back
+    assert m["usv_final_phase"] == "RECOVERED" and m["auv_final_phase"] in ("SURFACED", "RECOVERED"), m
     assert m["target_error_m"] is None  # nothing was detected, nothing is reported as found
+    assert m["usv_auv_min_clearance_m"] is not None and m["usv_auv_min_clearance_m"] >= MIN_AUV_CLEARANCE_M, m
 
 
 def test_auv_stack_dies_usv_holds_position(tmp_path):
@@ -108,9 +127,17 @@ def test_auv_stack_dies_usv_holds_position(tmp_path):
     assert m["target_error_m"] is None
 
 
-def test_usv_stack_dies_auv_goes_on(tmp_path):
-    r, m = run("pyhajarvi.yaml", tmp_path / "kill_usv", "--kill", "usv@100", "--after-kill", "60")
+def test_usv_stack_dies_while_the_auv_holds_and_it_surfaces_and_holds(tmp_path):
+    """Kill -9 of the USV's whole stack (its relay with it) while the AUV holds at its find: the AUV hears no USV
+    status any more and, ~usv_timeout (30 s) after the last one, comes up and holds at the surface: its safe state.
+    In the main job the AUV finds the target at about 270 s (measured in docs/mission.md), holding from then on."""
+    kill_at = 310.0
+    r, m = run("pyhajarvi.yaml", tmp_path / "kill_usv", "--kill", "usv@%g" % kill_at, "--after-kill", "110")
     assert r.returncode == 1, r.stdout[-3000:]
-    assert list(m["stacks_died"]) == ["usv"], m
-    assert m["auv_final_phase"] in ("COVERAGE", "TARGET_FOUND"), m  # still searching, or found it meanwhile
-    assert m["usv_final_phase"] == "STATION_KEEPING", m  # read from the killed USV's recovered bag
+    assert list(m["stacks_died"]) == ["usv"] and m["outcome"] == "stack_died", m
+    assert m["found_at_s"] is not None and m["found_at_s"] < kill_at, m  # it held when the USV died
+    assert m["auv_final_phase"] == "SURFACED", m
+    # the last status came at most a status period (0.5 s) and the relay before the kill; the AUV's timer 0.5 s
+    assert m["ascent_at_s"] is not None and USV_TIMEOUT_S - 1.0 <= m["ascent_at_s"] - kill_at <= USV_TIMEOUT_S + 1.5, m
+    assert m["surfaced_at_s"] is not None and m["surfaced_at_s"] < m["sim_time_s"] - 20.0, m
+    assert m["auv_surface_excursion_m"] is not None and m["auv_surface_excursion_m"] < MAX_AUV_SURFACE_M, m

@@ -57,7 +57,9 @@ def test_report_from_bags(tmp_path):
         tg = Target()
         tg.origin.x, tg.origin.y, tg.origin.z = 45.0, 4.0, 5.0
         b.write("/target", tg, rospy.Time(120))
-        s = MissionStatus(vehicle="usv", phase="ARRIVED", finished=True, success=True, detail="arrived")
+        s = MissionStatus(vehicle="usv", phase="ARRIVED", detail="arrived")
+        b.write("/usv/mission/status", s, rospy.Time(148))
+        s = MissionStatus(vehicle="usv", phase="RECOVERED", finished=True, success=True, detail="recovered")
         b.write("/usv/mission/status", s, rospy.Time(149))
     sc = tmp_path / "sc.yaml"
     sc.write_text("name: t\norigin: {latitude: 61.45, longitude: 23.72}\nusv: {start: {north: 0, east: 0}}\n"
@@ -66,14 +68,15 @@ def test_report_from_bags(tmp_path):
                   "targets:\n  - {north: 45.0, east: 3.0, depth: 5.0, radius: 0.5}\n")
     out = tmp_path / "report"
     m = report.build(usv_bag, None, str(sc), str(out), wall_time_s=12.0)
-    assert m["success"] is True
+    assert m["success"] is True and m["recovered"] is True, m["outcome"]  # success needs the AUV recovered (RECOVERED)
     assert m["usv_xte_est_rmse_m"] == pytest.approx(0.5)
     assert m["usv_xte_est_mae_m"] == pytest.approx(0.5)
     # from the hull (config/usv.yaml's outline, 1.3 m to each side of the centreline), not the reference point
     assert m["min_clearance_m"] == pytest.approx(2.5 - 0.5 - 1.3, abs=1e-3)
     assert m["outcome"] == "success"
     assert m["target_error_m"] == pytest.approx(1.0)
-    assert m["usv_final_distance_to_target_m"] == pytest.approx(math.hypot(45.0 - 49.0, 3.0 - 0.5))
+    # where it held at the target: its last ARRIVED status (148 s), not where the recovery took it
+    assert m["usv_final_distance_to_target_m"] == pytest.approx(math.hypot(45.0 - 48.0, 3.0 - 0.5))
     assert m["auv_xte_true_rmse_m"] is None  # no AUV bag: reported as unknown, not as zero
     assert m["sim_time_s"] == pytest.approx(49.0)
     for f in ("metrics.json", "summary.md", "map.png", "cross_track.png"):
@@ -237,3 +240,68 @@ def test_fault_entries_carry_the_issues_keys_and_say_what_happened():
     assert safe.reached("auv", "surface", 49.0) == 55.0  # under 0.5 m deep
     assert safe.reached("usv", "surface", 13.0) == 13.1  # the USV's surface is neutral
     assert safe.reached("usv", "warn", 7.0) == 7.0 and safe.reached("auv", "surface", 60.0) is None
+
+
+def test_recovery_figures_and_the_auv_left_in_the_water(tmp_path):
+    """After the find (docs/mission.md, "Recovery"): the AUV's hold excursion from its hold point (3-D, from on station
+    until the ascent), its drift while coming up (once it rose 0.3 m), the hull's distance to it (the C++ tool, the AUV
+    a disc of its length), the times from the statuses' stamps; and without RECOVERED the outcome auv_adrift."""
+    import rosbag
+    import rospy
+    from geometry_msgs.msg import Point
+    from nav_msgs.msg import Odometry
+    from offshore_gnc.msg import MissionStatus, Target
+
+    def odom(n, e, d, t, yaw_enu=0.0):
+        o = Odometry()
+        o.header.stamp = rospy.Time(t)
+        o.pose.pose.position.x, o.pose.pose.position.y, o.pose.pose.position.z = e, n, -d
+        o.pose.pose.orientation.z, o.pose.pose.orientation.w = math.sin(yaw_enu / 2), math.cos(yaw_enu / 2)
+        return o
+
+    def status(vehicle, phase, t, hold=(float("nan"),) * 3, since=float("nan"), **kw):
+        m = MissionStatus(vehicle=vehicle, phase=phase, on_station_since=since, hold_point=Point(*hold), **kw)
+        m.header.stamp = rospy.Time(t)
+        return m
+
+    auv_bag, usv_bag = str(tmp_path / "auv.bag"), str(tmp_path / "usv.bag")
+    with rosbag.Bag(auv_bag, "w") as b:
+        # holding at (40, 0, 3): on station from 102 s, 0.5 m off at 110 s (and 3 m off at 101 s, before on station)
+        track = [(100, 37, 0, 3), (101, 37, 0, 3), (102, 39.8, 0, 3), (110, 40.5, 0, 3), (120, 40.2, 0, 3),
+                 # ascending from 121 s: 0.4 m off the surfacing point at 2.9 m (not yet risen), 0.6 m once risen
+                 (122, 40.4, 0, 2.9), (130, 40.0, 0.6, 2.0), (150, 40.0, 0.2, 0.0)]
+        for n, e_, d, t in [(n, e_, d, t) for t, n, e_, d in track]:
+            b.write("/auv/ground_truth/odom", odom(n, e_, d, t), rospy.Time(t))
+        b.write("/auv/mission/status", status("auv", "COVERAGE", 50), rospy.Time(50))
+        tg = Target()
+        tg.origin.x, tg.origin.y, tg.origin.z = 45.0, 0.5, 3.0
+        b.write("/target", tg, rospy.Time(100))
+        b.write("/auv/mission/status", status("auv", "TARGET_FOUND", 100, (40, 0, 3), 102.0), rospy.Time(100))
+        b.write("/auv/mission/status", status("auv", "TARGET_FOUND", 110, (40, 0, 3), 102.0), rospy.Time(110))
+        b.write("/auv/mission/status", status("auv", "ASCENT", 121, (40, 0, 3)), rospy.Time(121))
+        b.write("/auv/mission/status", status("auv", "SURFACED", 145, (40, 0, 0), stationary=True), rospy.Time(145))
+    with rosbag.Bag(usv_bag, "w") as b:
+        for t in range(100, 151):  # at the target (3 m east of it) until ARRIVED ends, then 10 m east of the
+            # surfacing point, bow west toward it (ENU yaw 180 deg)
+            n, e_ = (45, 3) if t <= 120 else (40, 10)
+            b.write("/usv/ground_truth/odom", odom(n, e_, 0, t, math.pi), rospy.Time(t))
+        b.write("/usv/mission/status", status("usv", "ARRIVED", 120), rospy.Time(120))
+        b.write("/usv/mission/status", status("usv", "RECOVERY", 146, (40, 10, 0)), rospy.Time(146))
+    sc = tmp_path / "sc.yaml"
+    sc.write_text("name: t\norigin: {latitude: 61.45, longitude: 23.72}\nusv: {start: {north: 0, east: 0}}\n"
+                  "auv: {start: {north: 5, east: 5, depth: 2}}\n"
+                  "targets:\n  - {north: 45.0, east: 0.0, depth: 5.0, radius: 0.5}\n")
+    m = report.build(usv_bag, auv_bag, str(sc), str(tmp_path / "r"), outcome={"reason": "time", "sim_time_s": 150.0})
+    assert m["auv_hold_excursion_m"] == pytest.approx(0.5)
+    assert m["auv_ascent_drift_m"] == pytest.approx(0.6)
+    assert m["auv_surface_excursion_m"] == pytest.approx(0.2)  # at the surface from 145 s: 0.2 m off at 150 s
+    assert (m["found_at_s"], m["ascent_at_s"], m["surfaced_at_s"]) == (100.0, 121.0, 145.0)
+    assert m["recovered_at_s"] is None and m["find_to_recovery_s"] is None and m["recovered"] is False
+    # the bow 5.3 m ahead of the reference point, 9.8 m from the AUV's centre at the end, the Girona500 1.5 m long
+    assert m["recovery_distance_m"] == pytest.approx(9.8 - 5.3 - 0.75, abs=1e-3)
+    assert m["usv_auv_min_clearance_m"] == pytest.approx(9.8 - 5.3 - 0.75, abs=1e-3)  # only near the surface
+    assert m["target_error_m"] == pytest.approx(0.5)
+    assert m["usv_final_distance_to_target_m"] == pytest.approx(3.0)  # where it held at the target
+    assert m["outcome"] == "auv_adrift"  # the USV arrived, the AUV came up: nobody picked it up
+    assert "hull to the AUV" in (tmp_path / "r" / "summary.md").read_text()
+    assert (tmp_path / "r" / "map.png").stat().st_size > 0

@@ -1,8 +1,8 @@
 #pragma once
 // The co-operative mission (paper 3.2.3, thesis chapter 5) ROS-free in one process: both vehicles' stacks
-// (closed_loop/stacks.h) on one simulated clock, the AUV's confirmed target handed to the USV's mission as the
-// relay would, until the USV holds position at the target, the AUV ends its search without one, or the time
-// limit. The same scenario, configuration and seeds as ./scripts/mission, with the figures its report gives
+// (closed_loop/stacks.h) on one simulated clock, the AUV's confirmed target and both missions' statuses handed
+// across as the relay would, until the USV reports the AUV recovered (docs/mission.md: it holds beside the surfaced
+// AUV, both stationary), the time limit, or `after_kill` seconds after a stack was killed. The same scenario, configuration and seeds as ./scripts/mission, with the figures its report gives
 // (metrics over the same samples: guidance's cross-track error in path following; the AUV's from the first
 // waypoint reached and on the truth, as the report's auv_xte_true_rmse_m). The AUV navigates as in the ROS mission: on USBL
 // fixes placed by the USV's GPS and heading relayed over the radio (closed_loop/usbl_navigation.h); the radio
@@ -12,6 +12,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "offshore_gnc/closed_loop/outcome.h"
@@ -33,6 +34,10 @@ struct MissionConfig {
   // The main job's own faults, between the vehicles (offshore_gnc::faultKinds() "both"): `link` takes the radio
   // down, `geofence` hands the USV a target 5 km north of the origin as if the AUV had sent it.
   FaultPlan link_faults;
+  // A stack killed at a simulated time (./scripts/mission --kill V@T): it stops, nothing crosses the radio from or
+  // to it any more, and the run goes on for after_kill seconds with the other vehicle.
+  std::string kill;  // "", "usv" or "auv"
+  double kill_at = 0.0, after_kill = 60.0;
 };
 // The scenario (its mission section says how a run is judged) and the vehicles' configuration files under
 // config_dir.
@@ -52,6 +57,7 @@ struct VehicleRecord {
   guidance::TrackingMetrics metrics, metrics_truth;   // over xte, xte_truth
   guidance::TrackingMetrics tracking, tracking_truth, approach_truth;  // over the split samples
   std::string final_phase;
+  std::vector<std::pair<double, std::string>> phases;  // (t, phase) at each change of the mission's phase
 };
 
 struct MissionResult {
@@ -64,6 +70,8 @@ struct MissionResult {
   double detection_time_s = 0.0;          // from the start of the coverage (NaN without a detection)
   double min_clearance_m = 0.0;           // the USV hull's closest approach to an obstacle (sim/contact.h; <= 0:
                                           // contact; NaN without obstacles)
+  // the USV's true distance from the nearest true target where it held there (its last moment in ARRIVED, before it
+  // left for the recovery), else where it ended (NaN without a target)
   double usv_final_distance_to_target_m = 0.0;
   // Station keeping (docs/mission.md): the largest distance from where the USV started waiting until the target
   // came, and the 95th percentile distance from its hold point over the hold at the target (NaN without one).
@@ -76,13 +84,34 @@ struct MissionResult {
   double sim_time_s = 0.0, wall_time_s = 0.0;
   std::vector<safety::Transition> usv_safety, auv_safety;  // each supervisor's activations and releases
   std::vector<std::string> target_refusals;  // the USV mission's reasons for refusing a target it was handed
+  // After the find (docs/mission.md, "Recovery"; the main job's report computes the same):
+  bool recovered = false;                  // the USV reported RECOVERED
+  std::string stack_died;                  // the killed stack ("" none)
+  double auv_hold_excursion_m = 0.0;       // the AUV's true position from its hold point (3-D), on station until the ascent
+  double auv_ascent_drift_m = 0.0;         // horizontal, from the surfacing point, once it rose 0.3 m until at the surface
+  double auv_surface_excursion_m = 0.0;    // horizontal, from the point it holds at the surface, while there (NaN never)
+  double recovery_distance_m = 0.0;        // the USV hull to the AUV (a disc of its length) at the end
+  double usv_auv_min_clearance_m = 0.0;    // the least of that while the AUV was within kAuvContactDepth of the surface
+  double find_to_recovery_s = 0.0;         // from the find (or the search's end) to RECOVERED
+  // the absolute simulated times [s] (NaN: not reached): the search's end, the ascent, at the surface, RECOVERED
+  double found_at_s = 0.0, ascent_at_s = 0.0, surfaced_at_s = 0.0, recovered_at_s = 0.0;
+  Eigen::Vector3d auv_hold_point = Eigen::Vector3d::Zero();     // where it held at depth (NaN none)
+  Eigen::Vector2d auv_surface_point = Eigen::Vector2d::Zero();  // where it held at the surface (NaN none)
+  Eigen::Vector2d recovery_point = Eigen::Vector2d::Zero();     // where the USV held beside it (NaN none)
   // The USV at 20 Hz, what a tuner looks at (mission_rosfree --out writes it as usv_trace.csv, kUsvTraceHeader):
   // truth, guidance's reference and cross-track, the joystick command, dynamic positioning's last step.
   std::vector<std::array<double, 19>> usv_trace;
+  // The AUV at 20 Hz (auv_trace.csv, kAuvTraceHeader): truth, its navigation estimate, the reference control
+  // follows, the Girona500's requested wrench (NaN on the aColor).
+  std::vector<std::array<double, 17>> auv_trace;
 };
 inline constexpr const char* kUsvTraceHeader =
     "t,north,east,yaw,u,v,r,ref_mode,ref_north,ref_east,ref_heading,xte,surge,sway,yaw_cmd,"
     "dp_heading,dp_steady_north,dp_steady_east,dp_distance";
+
+inline constexpr const char* kAuvTraceHeader =
+    "t,north,east,down,yaw,est_north,est_east,est_down,ref_mode,ref_north,ref_east,ref_depth,ref_heading,"
+    "tau_x,tau_y,tau_z,tau_n";
 
 MissionResult runMission(const MissionConfig& cfg);
 

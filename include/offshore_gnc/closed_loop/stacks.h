@@ -12,6 +12,7 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,8 @@ class UsvStack {
   void step();
   void onTarget(const Eigen::Vector2d& ned, double t);  // /target, relayed from the AUV
   void onPeerAlive(double t);                           // the relay's link is up
+  // /auv/mission/status, relayed: the AUV's phase, position and whether it is stationary at the surface.
+  void onAuvStatus(mission::AuvPhase phase, const Eigen::Vector3d& ned, bool stationary, double t);
   void setRoute(const std::vector<Eigen::Vector3d>& path) { guidance_.setPath(path); }  // without the mission
 
   double time() const { return sim_.state().t; }
@@ -101,6 +104,7 @@ class UsvStack {
  private:
   void perceive(double t);
   void checkCollision(double t);  // the time to collision and the safe side, as the nodelet computes them
+  void pathToGuidance();          // the mission's path, when it asks for one
 
   UsvStackConfig cfg_;
   sim::UsvSimulation sim_;
@@ -125,6 +129,16 @@ class UsvStack {
 };
 
 // ------------------------------------------------------------------------------------------------- AUV
+// The AUV's GPS, modelled here because the simulator has none: a fix of the true horizontal position with white
+// noise, at its rate, while the antenna is out of the water; the navigation fuses it as a position fix (the
+// Girona500's navigator fuses its GPS at the surface the same way). The ROS mission has no such sensor yet.
+struct SurfaceGpsConfig {
+  double rate = 1.0;        // fixes per second at the surface [Hz]; 0: no GPS (the aColor's USBL alone)
+  double sigma = 1.5;       // horizontal standard deviation, each axis [m]
+  double max_depth = 0.3;   // deeper than this the antenna is under water: no fix [m]
+  static const ParamTable<SurfaceGpsConfig>& table();
+};
+
 struct AuvStackConfig {
   std::string model = "girona500";    // girona500 | acolor (auv.launch vehicle_model)
   sim::AuvSimulation::Config sim;     // sim_auv.launch: seed 2, the simulator's defaults, the model's params
@@ -140,18 +154,24 @@ struct AuvStackConfig {
   UsblNavigationConfig usbl;          // config/usbl/usbl.yaml, config/navigation/auv_<model>.yaml
   unsigned usbl_seed = 1;             // the beacon simulator's (config/usbl/usbl.yaml seed)
   Eigen::Vector3d usv_gps_antenna{0, 0, -2.5};  // where the USV's GPS reports from (its simulator's gps/antenna)
+  SurfaceGpsConfig surface_gps;       // with navigation usbl; the Girona500's (the aColor has none)
+  double length = 1.5;                // the vehicle config's vehicle/length: its size in the recovery figures [m]
   double mission_period = 0.5;
   bool mission_enabled = true;
   bool use_truth = false;
 };
 AuvStackConfig loadAuvStack(const std::string& config_dir, const std::string& model,
                             const std::string& scenario_file = "");
+// The AUV's length from its vehicle config (config/auv_<model>.yaml vehicle/length) [m].
+double auvLength(const std::string& config_dir, const std::string& model);
 
 class AuvStack {
  public:
   AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg);
   void step();
   void onPeerAlive(double t) { safety_.core().heard(safety::Source::kLink, t); }  // the relay's link is up
+  // /usv/mission/status, relayed: the USV's phase, position and the point it holds (its station).
+  void onUsvStatus(mission::UsvPhase phase, const Eigen::Vector2d& ned, const Eigen::Vector2d& station, double t);
   // What reaches the AUV's master from the USV: its GPS fix and heading over the relay, and (simulation only, the
   // acoustic channel) its true pose for the beacon simulator; set before step().
   void onUsvGps(const sim::GpsCompassReading& g);
@@ -167,6 +187,8 @@ class AuvStack {
   const mission::AuvMission& mission() const { return mission_; }
   const guidance::GuidancePipeline& guidance() const { return guidance_; }
   const guidance::GuidanceOutput* guidanceStep() const { return guided_ ? &last_ : nullptr; }
+  const guidance::GuidanceOutput& lastGuidance() const { return last_; }
+  const control::ActuatorCommand& command() const { return command_; }  // the last control step's
   // The confirmed target for the USV, once (what the mission publishes on /target).
   std::optional<Eigen::Vector3d> takeTarget() { auto t = target_; target_.reset(); return t; }
   // Sonar targets of the sweeps so far (map_ned).
@@ -176,9 +198,12 @@ class AuvStack {
   void perceive();
   void navigate(const VehicleState& s, double t);  // a new /auv/odom: to TF, guidance, control, the supervisor
 
+  void surfaceGps(double t);  // the modelled GPS (SurfaceGpsConfig) into the navigation
+
   AuvStackConfig cfg_;
   sim::AuvSimulation sim_;
   std::optional<UsblNavigation> usbl_;
+  std::mt19937 gps_rng_;
   VehicleState usv_truth_;
   navigation::PoseHistory poses_;
   perception::SonarTargetExtractor sonar_;
@@ -190,10 +215,11 @@ class AuvStack {
   std::optional<VehicleState> estimate_;
   std::optional<Eigen::Vector3d> target_;
   guidance::GuidanceOutput last_;
+  control::ActuatorCommand command_;
   StackSupervisor safety_;
   bool guided_ = false;
   long step_ = 0;
-  int guidance_every_, control_every_, mission_every_, navigation_every_;
+  int guidance_every_, control_every_, mission_every_, navigation_every_, gps_every_;
 };
 
 }  // namespace closed_loop

@@ -63,6 +63,9 @@ class UsblNavigation {
   void ahrs(double t, double roll, double pitch, double yaw, const Eigen::Vector3d& rate_frd);
   void dvl(double t, const Eigen::Vector3d& v_body);
   void commandedSurge(double t, double surge);
+  // Another absolute position fix taken at t (the AUV's GPS at the surface), straight into the filter; true when
+  // it went in (not gated).
+  bool positionFix(double t, const Eigen::Vector3d& ned, const Eigen::Matrix3d& cov) { return nav_.usblFix(t, ned, cov); }
   // One simulation step at t: the transceiver's serial traffic (the acoustic replies from both vehicles' true
   // poses), fixes placed once the relayed USV pose has reached their time, into the filter.
   void step(double t, const VehicleState& usv_truth, const VehicleState& auv_truth);

@@ -21,7 +21,8 @@ inline double wrapAngle(double a) {
 inline double wrapTwoPi(double a) {
   if (!std::isfinite(a)) return a;
   a = std::fmod(a, 2.0 * kPi);
-  return a < 0.0 ? a + 2.0 * kPi : a;
+  if (a < 0.0) a += 2.0 * kPi;
+  return a < 2.0 * kPi ? a : 0.0;  // a negative a within an ulp of 0 plus 2 pi rounds to 2 pi itself (360 degrees)
 }
 
 // Signed smallest difference a - b, in (-pi, pi].

@@ -3,7 +3,7 @@
 // - USV: surge and yaw PIDs on low-pass + notch filtered feedback -> normalised joystick command (the CAN gateway
 //   forwards it as the manual 3-axis joystick would); station keeping with position PIDs in the body frame.
 // - aColor AUV: yaw PID, heave P, constant surge (from guidance's speed through the model) -> RC channel PWM
-//   (1100-1900 us).
+//   (1100-1900 us); holding a point, north and east PIDs on the surge and sway channels.
 // - Girona500: north, east, down, yaw PIDs -> body wrench -> allocation T^+ tau with saturation.
 #include <Eigen/Core>
 
@@ -74,7 +74,12 @@ class UsvController {
 struct AcolorControlParams {
   PidGains yaw{0.580, 0.276, 0.812, 1.0, 0.3};  // Table 4.2, normalised yaw deflection
   PidGains heave{300.0, 0.0, 0.0, 400.0, 0.0};  // Table 4.2 heave P, output in PWM microseconds from neutral
-  int channel_heave = 3, channel_yaw = 4, channel_surge = 5;  // 1-based RC channels
+  // Holding a point (after the find, at the surface, a safety hold): a PID per horizontal axis in NED on the
+  // position error, its output the normalised surge and sway commands (rotated into the body) of the four vectored
+  // thrusters. All zero by default: the thesis' aColor had no dynamic positioning (it stopped and held its depth);
+  // config/control/acolor_sim.yaml sets the simulated vehicle's.
+  PidGains hold{0.0, 0.0, 0.0, 1.0, 0.3};
+  int channel_heave = 3, channel_yaw = 4, channel_surge = 5, channel_sway = 6;  // 1-based RC channels (ArduSub's)
   int num_channels = 8;
   double dt = 0.1;
   // Forward command (normalised, -1..1) for a surge speed through the water [m/s]: constant for guidance's
@@ -103,7 +108,7 @@ class AcolorController {
 
  private:
   AcolorControlParams p_;
-  Pid yaw_, heave_;
+  Pid yaw_, heave_, north_, east_;
   Counters counters_;
 };
 
@@ -123,6 +128,11 @@ struct Girona500ControlParams {
   // most max_crab. Off by default (the thesis' heading from guidance): in the default mission it cost the sonar's
   // target accuracy (docs/guidance-control.md); 1.2 for currents near 0.5 m/s.
   double max_crab = 0.0;         // [rad]
+  // The same while holding a point (the AUV keeping the spot after the find, or at the surface): the heading is
+  // guidance's (toward the target) only while the lateral thruster can hold the sideways part of the demand. On
+  // by default: beam on to 0.3 m/s the Girona500 needs 46 N of sway (its 40 N thruster let it go), and while it
+  // holds its sonar only has to keep the target within its sector, not pass it on a leg.
+  double hold_crab = 1.5;        // [rad]
   double crab_tf = 5.0;          // low-pass time constant of the force demand [s]
   double crab_force = 40.0;      // the lateral thruster's limit: the bow turns once it is not enough [N]
   Eigen::MatrixXd tcm;           // 4 x n (surge, sway, heave, yaw); default: models::AuvParams::girona500().tcm()

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
 
 namespace offshore_gnc {
 namespace micron {
@@ -88,6 +89,18 @@ struct SendData {
   std::uint32_t time_ms = 0;  // PC clock, ms since midnight
 };
 
+// How 4-bit data (adc8on off: two bins a byte) is unpacked. The public descriptions disagree: two public drivers
+// take the first (nearer) bin from the high nibble (and leave the levels 0..15), another takes the low nibble first
+// and scales by 17. This driver takes the high nibble first, as the two do and as the byte reads (first bin, first
+// nibble on the wire); it scales by 17 so that level 15 is 255, the top of the 8-bit mode's 0..80 dB like the level it
+// stands for (by 16 it was 240). Both are parameters (`four_bit_order`, `four_bit_scale`): check them on a capture
+// of your head with adc8on off (docs/hardware.md). The driver asks for 8-bit data, so this matters for such a head.
+struct FourBitFormat {
+  std::string order = "high_first";  // high_first | low_first
+  int scale = 17;                    // 16 or 17 (level 15 -> 240 or 255)
+  static const ParamTable<FourBitFormat>& table();
+};
+
 struct HeadData {
   std::uint16_t byte_count = 0;  // body word at 13: bytes from 13 to the last data byte
   std::uint8_t device_type = 0x11, head_status = 0, sweep_code = kScanning;
@@ -101,8 +114,8 @@ struct HeadData {
   std::uint8_t step_angle = 0;
   std::uint16_t bearing = 0;         // [1/16 gradian], 0..6399
   std::vector<std::uint8_t> data;    // the dbytes as sent (4-bit packed when adc8on is off)
-  // Echo amplitude per bin, 0..255 (4-bit data unpacked high nibble first and scaled by 16).
-  std::vector<std::uint8_t> bins() const;
+  // Echo amplitude per bin, 0..255; 4-bit data (adc8on off) unpacked as `four_bit` says.
+  std::vector<std::uint8_t> bins(const FourBitFormat& four_bit = {}) const;
   double rangeScaleM() const { return (range_scale & 0x3FFF) / 10.0; }
   int rangeUnits() const { return range_scale >> 14; }
 };

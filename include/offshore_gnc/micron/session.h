@@ -37,6 +37,7 @@ struct SonarSettings {
   double sound_speed = 1500.0;       // [m/s]
   double beam_width = deg2rad(3.0);  // [rad] horizontal beam of the Micron (not in the protocol)
   HeadGeometry geometry;
+  FourBitFormat four_bit;            // only with a head that sends 4-bit data (the driver asks for 8-bit)
   std::uint8_t head_type = 0x11;     // 0x11 = DST (Micron)
   int mo_time = 25;                  // motor step delay [10 us]
   bool reboot_on_start = true;

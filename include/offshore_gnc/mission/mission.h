@@ -1,9 +1,13 @@
 #pragma once
 // Co-operative mission logic (paper section 3.2.3, thesis chapter 5), ROS-free. The nodelets feed events
-// (detections, poses, guidance progress, manual control, peer liveness) and publish what these machines ask
-// for (paths, the target, status). All positions in map_ned (x north, y east, z down) [m], times in seconds.
+// (detections, poses, guidance progress, manual control, the other vehicle's mission status) and publish what
+// these machines ask for (paths, the target, status). After the find (issue 36) the AUV keeps the spot at depth,
+// comes up at a bounded rate and holds at the surface; the USV, once it has arrived, goes to the surfaced AUV and
+// holds beside it until both are stationary (RECOVERED). All positions in map_ned (x north, y east, z down) [m],
+// times in seconds.
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <string>
@@ -26,23 +30,43 @@ struct CoverageArea {
 };
 std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a);
 
+inline const Eigen::Vector2d kNoPoint = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+
+enum class AuvPhase { Idle, Coverage, TargetFound, NoTarget, Ascent, Surfaced, Recovered };
+enum class UsvPhase { StationKeeping, Transit, Arrived, Recovery, Recovered, Manual, PeerLost };
+const char* toString(AuvPhase p);
+const char* toString(UsvPhase p);
+// The phase a status message names (the other vehicle's, across the relay); nullopt for an unknown name.
+std::optional<AuvPhase> auvPhaseFromString(const std::string& s);
+std::optional<UsvPhase> usvPhaseFromString(const std::string& s);
+
 // ------------------------------------------------------------------------------------------------- AUV
 struct AuvMissionParams {
   int confirm_detections = 2;        // detections of the same object needed before it counts (sonar sweeps)
   double confirm_radius = 2.0;       // detections closer than this are the same object [m]
   double detection_max_age = 120.0;  // unconfirmed detections older than this are forgotten [s]
   double start_delay = 2.0;          // the search starts this long after the first tick [s]
+  // After the search (issue 36): keep the spot at depth, come up under control, wait at the surface.
+  double hold_standoff = 5.0;        // hold this far from the target on the line from the find, facing it [m]
+  double refine_distance = 0.5;      // the refined target is resent once it moved this far from the one sent [m]
+  double hold_timeout = 600.0;       // holding this long without the USV's arrival: ascend anyway [s]
+  double usv_timeout = 30.0;         // holding without the USV's status this long (link lost, stack dead): ascend [s]
+  double ascent_rate = 0.1;          // the depth reference rises at most this fast [m/s]
+  double surface_depth = 0.5;        // shallower than this the AUV is at the surface [m]
+  double surface_clearance = 10.0;   // surface at least this far from where the USV holds or is bound [m]
+  double station_radius = 1.0;       // on station (and, at the surface, stationary) this close to its point [m]
   CoverageArea coverage;             // from the mission config or, in simulation, the scenario
   static const ParamTable<AuvMissionParams>& table();  // without `coverage` (read under its own prefix)
   void validate() const;
 };
 
-enum class AuvPhase { Idle, Coverage, TargetFound, NoTarget };
-const char* toString(AuvPhase p);
-
-// Coverage -> first confirmed detection -> stop (thrusters off: the aColor AUV had no DP, paper 3.2.3) ->
-// report the target; coverage finished without a detection -> stop and say so. What guidance and the USV
-// must be told comes out of takePath() / takeTarget() (each once, when it changes).
+// Coverage -> first confirmed detection -> TARGET_FOUND: hold at depth hold_standoff from the target facing it
+// (dynamic positioning on the navigation it searched on), the sonar refining the target, resent when it moved
+// refine_distance -> ASCENT when the USV reports it has arrived (or hold_timeout, usv_timeout, or the safety
+// supervisor surfaces it): first clear of the USV at depth if it is within surface_clearance, then up at
+// ascent_rate -> SURFACED: holding at the surface, its position in the status for the USV -> RECOVERED once the
+// USV says so (it keeps holding). Coverage finished without a detection -> NO_TARGET -> ASCENT at once. What
+// guidance and the USV must be told comes out of takePath() / takeTarget() (each once, when it changes).
 class AuvMission {
  public:
   explicit AuvMission(const AuvMissionParams& p = {});
@@ -51,21 +75,42 @@ class AuvMission {
   void start(double t);                                   // Idle -> Coverage (the coverage path is due)
   // Guidance's mode: the end of the coverage path is station keeping after path following.
   void onGuidance(guidance::Mode mode, double t);
-  // A sonar target in map_ned. Returns true when this detection confirms the target (phase -> TargetFound).
+  // A sonar target in map_ned. Returns true when this detection confirms the target (phase -> TargetFound);
+  // while holding, a detection of the same object refines it.
   bool onDetection(const Eigen::Vector3d& p, double t);
   void onCoverageFinished(double t);                      // guidance reached the last coverage waypoint
+  // The navigation estimate (NED, yaw): where the hold is placed and the ascent is measured.
+  void onPose(const Eigen::Vector3d& ned, double yaw, double t);
+  // The USV mission's status across the relay: its phase, navigation position and the point it holds or is bound
+  // for (NaN: none). The AUV surfaces clear of where the USV will be: it says ARRIVED up to 10 m short of its point
+  // (guidance's final radius), and an aColor surfaced under the hull that came on.
+  void onUsvStatus(UsvPhase phase, const Eigen::Vector2d& usv_ned, const Eigen::Vector2d& usv_station, double t);
+  // The safety supervisor surfaces the vehicle (surface or abort): after the search, the mission ascends too, so
+  // that it does not dive back to its hold when the override is released.
+  void onSafetySurface(double t);
 
-  // The path guidance must follow now (the coverage; empty = stop), once per change.
+  // The path guidance must follow now (the coverage, the hold, the ascent), once per change.
   std::optional<std::vector<Eigen::Vector3d>> takePath();
-  // The confirmed target for the USV, once.
+  // The target for the USV: the confirmed one, then each refinement that moved it refine_distance; once each.
   std::optional<Eigen::Vector3d> takeTarget();
 
   AuvPhase phase() const { return phase_; }
-  bool finished() const { return phase_ == AuvPhase::TargetFound || phase_ == AuvPhase::NoTarget; }
-  bool thrustersOff() const { return finished(); }       // the vehicle stops once the search is over
-  // Confirmed target: mean of the detections that confirmed it.
+  bool searchOver() const { return phase_ != AuvPhase::Idle && phase_ != AuvPhase::Coverage; }
+  bool noTarget() const { return searchOver() && !target_; }  // the search ended without a target
+  bool finished() const { return phase_ == AuvPhase::Recovered; }
+  // Confirmed target: mean of the detections that confirmed (and since refined) it.
   const std::optional<Eigen::Vector3d>& target() const { return target_; }
   double detectionTime() const { return detection_time_; }  // NaN until found
+  // The point held now (the hold at depth, the surfacing point during the ascent and at the surface); NaN none.
+  const Eigen::Vector3d& holdPoint() const { return hold_; }
+  const std::optional<Eigen::Vector3d>& pose() const { return pose_; }  // the last navigation estimate
+  // TargetFound: when the vehicle first came within station_radius of its hold point (NaN before).
+  double onStationSince() const { return on_station_since_; }
+  // At the surface within station_radius of the point it holds (what the USV waits for before RECOVERED).
+  bool stationary() const;
+  double searchEndedAt() const { return searchOver() ? found_t_ : std::numeric_limits<double>::quiet_NaN(); }
+  double ascentStart() const { return ascent_t_; }          // NaN before the ascent
+  double surfacedAt() const { return surfaced_t_; }         // NaN before
   std::string detail() const;
   const Counters& counters() const { return counters_; }
 
@@ -76,15 +121,23 @@ class AuvMission {
     double last_t = 0.0;
     Eigen::Vector3d mean() const { return sum / n; }
   };
-  void stop();
+  void hold(const Eigen::Vector3d& point, double t);  // hold path at point, heading hold_heading_
+  void ascend(double t, const std::string& why, bool clear_of_usv = true);
+  void refine(const Eigen::Vector3d& p, double t);
 
   AuvMissionParams p_;
   AuvPhase phase_ = AuvPhase::Idle;
   std::vector<Cluster> clusters_;
-  std::optional<Eigen::Vector3d> target_, target_due_;
+  Cluster confirmed_;
+  std::optional<Eigen::Vector3d> target_, target_due_, target_sent_, pose_;
   std::optional<std::vector<Eigen::Vector3d>> path_due_;
-  double start_time_ = 0.0, detection_time_, first_tick_ = 0.0;
-  bool ticked_ = false, following_ = false;
+  std::optional<Eigen::Vector2d> usv_;  // where the USV is, or will hold
+  std::optional<UsvPhase> usv_phase_;
+  Eigen::Vector3d hold_;
+  std::string why_ascent_;
+  double start_time_ = 0.0, detection_time_, first_tick_ = 0.0, found_t_ = 0.0, usv_t_ = -1e300, yaw_ = 0.0;
+  double hold_heading_ = 0.0, on_station_since_, ascent_t_, surfaced_t_, ramp_t_ = 0.0, depth_ref_ = 0.0;
+  bool ticked_ = false, following_ = false, clearing_ = false;
   Counters counters_;
 };
 
@@ -96,18 +149,23 @@ struct UsvMissionParams {
   double peer_timeout = 60.0;       // AUV side silent this long before a target arrived -> report, keep DP [s]
   double manual_timeout = 1.0;      // manual control is released this long after its last command [s]
   double station_radius = 1.0;      // arrived, the USV is on station once this close to its hold point [m]
+  double recovery_distance = 4.0;   // recovering, the bow holds this far from the surfaced AUV [m]
+  double recovery_replan = 2.0;     // the recovery is planned again when the AUV's position moved this far [m]
+  double settle_time = 10.0;        // both vehicles stationary this long: RECOVERED [s]
   static const ParamTable<UsvMissionParams>& table();
   void validate() const;
 };
 
-inline const Eigen::Vector2d kNoPoint = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
-
-enum class UsvPhase { StationKeeping, Transit, Arrived, Manual, PeerLost };
-const char* toString(UsvPhase p);
-
 // Station keeping -> /target received -> straight path (SBB avoidance is the guidance's) -> stand-off reached
-// -> station keeping. Manual control always wins; autonomy resumes where it was when manual ends. The path for
-// guidance comes out of takePath() once per change (the hold path where the mission starts, the transit).
+// -> ARRIVED, station keeping -> the AUV reports itself at the surface -> RECOVERY: to recovery_distance off
+// the AUV, bow on, on the side away from the current (downstream of it: a USV that loses its jets drifts away
+// from the AUV, not onto it); first to a run-in point waypoint_spacing farther downstream (round the AUV when the
+// way passes close to it), then, once the AUV has held its point for settle_time, dynamic positioning closes in
+// along the axis toward it (back to the run-in whenever the AUV stops holding) -> both vehicles stationary for
+// settle_time -> RECOVERED. Without a target (the AUV surfaced after its search) station keeping
+// goes straight to RECOVERY. Manual control always wins; autonomy resumes where it was when manual ends. The
+// path for guidance comes out of takePath() once per change (the hold path where the mission starts, the
+// transit, the recovery).
 class UsvMission {
  public:
   explicit UsvMission(const UsvMissionParams& p = {});
@@ -131,6 +189,11 @@ class UsvMission {
   void onManual(bool active, double t);
   void onManualCommand(double t);          // a manual command seen: manual until manual_timeout after the last
   void onPeerAlive(double t);              // any sign of life from the AUV side (link status, relayed topic)
+  // The AUV mission's status across the relay: its phase, navigation position, whether it is stationary.
+  void onAuvStatus(AuvPhase phase, const Eigen::Vector3d& auv_ned, bool stationary, double t);
+  // How far the hull reaches ahead of the reference point (sim::HullFootprint's bow): the recovery distance is the
+  // bow's, so the reference point holds this much farther off.
+  void setBowReach(double metres) { bow_reach_ = std::max(0.0, metres); }
   void tick(double t);                     // time-based checks (peer timeout, manual released)
   std::optional<std::vector<Eigen::Vector2d>> takePath();
   double distanceToGo() const;             // along the transit path; NaN outside the transit
@@ -139,17 +202,28 @@ class UsvMission {
   double onStationSince() const { return on_station_since_; }
 
   UsvPhase phase() const { return manual_ ? UsvPhase::Manual : phase_; }
-  bool finished() const { return phase_ == UsvPhase::Arrived; }
+  bool finished() const { return phase_ == UsvPhase::Recovered; }
+  bool arrived() const { return arrived_; }  // came to ARRIVED (on station at the target) at some time
+  // RECOVERY: where the USV holds, and the AUV's surface position it was planned against (NaN before).
+  const Eigen::Vector2d& recoveryPoint() const { return recovery_point_; }
+  const Eigen::Vector2d& auvSurface() const { return auv_planned_; }
+  double recoveredAt() const { return recovered_t_; }  // NaN before
   // The path to follow (from the pose at the time the target came, to the stand-off point), waypoints every
   // `waypoint_spacing`; empty while station keeping. `path_version` increments on every new path.
   const std::vector<Eigen::Vector2d>& path() const { return path_; }
   int pathVersion() const { return path_version_; }
   const std::optional<Eigen::Vector2d>& target() const { return target_; }
   const std::optional<Eigen::Vector2d>& stationPoint() const { return station_; }  // where DP holds
+  const std::optional<Eigen::Vector2d>& pose() const { return pose_; }  // the last navigation estimate
   std::string detail() const;
   const Counters& counters() const { return counters_; }
 
  private:
+  void setPath(std::vector<Eigen::Vector2d> path);  // a new path for guidance (hold point measured afresh)
+  void planRecovery(double t);
+  bool auvHeld(double t) const;  // the AUV has reported itself stationary for settle_time, the last report fresh
+  void recover(double t);                           // RECOVERY's checks, each tick
+
   UsvMissionParams p_;
   UsvPhase phase_ = UsvPhase::StationKeeping;
   bool manual_ = false, following_ = false;
@@ -160,7 +234,15 @@ class UsvMission {
   std::vector<Eigen::Vector2d> path_;
   int path_version_ = 0;
   double last_peer_ = 0.0, heading_ = 0.0, last_manual_ = -1e300, distance_to_go_, on_station_since_;
-  bool peer_seen_ = false;
+  bool peer_seen_ = false, arrived_ = false;
+  // the AUV's last status, and the recovery planned against it
+  std::optional<AuvPhase> auv_phase_;
+  Eigen::Vector2d auv_pos_ = kNoPoint, auv_planned_ = kNoPoint, recovery_point_ = kNoPoint, recovery_axis_ = kNoPoint;
+  bool auv_stationary_ = false, alongside_ = false;  // alongside: closing in from the run-in point
+  Eigen::Vector2d run_in_ = kNoPoint;
+  Eigen::Vector2d vane_ = kNoPoint;  // the bow's mean direction while holding: where the current comes from
+  double pose_t_ = 0.0;
+  double auv_t_ = -1e300, bow_reach_ = 0.0, settled_since_, recovered_t_, auv_still_since_;
   Counters counters_;
 };
 

@@ -31,8 +31,8 @@ VARIABLES = (
 )
 BINS = 5
 # The worst first: a skipper's order (a collision is worse than a wrong target is worse than ...).
-SEVERITY = ("collision", "wrong_target", "stack_died", "off_station", "missed_target", "safety_abort", "timeout",
-            "success")
+SEVERITY = ("collision", "wrong_target", "stack_died", "auv_adrift", "off_station", "missed_target", "safety_abort",
+            "timeout", "success")
 PERCENTILES = (5, 25, 50, 75, 95)
 
 

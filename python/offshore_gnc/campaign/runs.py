@@ -12,8 +12,8 @@ import time
 from offshore_gnc import tools
 from offshore_gnc.campaign import generate
 
-OUTCOMES = ("success", "collision", "missed_target", "wrong_target", "off_station", "safety_abort", "timeout",
-            "stack_died")  # closed_loop/outcome.h's
+OUTCOMES = ("success", "collision", "missed_target", "wrong_target", "off_station", "auv_adrift", "safety_abort",
+            "timeout", "stack_died")  # closed_loop/outcome.h's
 RUN_TIMEOUT_S = 900.0  # wall time; a mission takes 1-10 s, so this only catches a hung process
 # What differs between two runs of the same (spec, index): when and where they ran.
 VOLATILE = ("run_wall_s", "host")

@@ -109,7 +109,7 @@ TEST(FaultsUnderWay, ALidarOutageInTheTransitStopsTheUsv) {
   const double start = std::ceil(t0) + 2.0;
   char plan[64];
   std::snprintf(plan, sizeof plan, "lidar@%g+20", start);
-  const MissionResult r = withFault(shortSearch(), plan, 400.0);
+  const MissionResult r = withFault(shortSearch(), plan, 600.0);  // to the recovery
   const auto on = activations(r, "usv", "lidar_timeout", true);
   ASSERT_EQ(on.size(), 1u);
   EXPECT_NEAR(on[0].t - start, 3.0, 0.08 + kPeriod + kSlack);

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -21,6 +22,9 @@ TEST(Angles, WrapIntoHalfOpenInterval) {
 TEST(Angles, TwoPiAndDiff) {
   EXPECT_NEAR(wrapTwoPi(-0.1), 2 * kPi - 0.1, 1e-12);
   EXPECT_NEAR(wrapTwoPi(2 * kPi), 0.0, 1e-12);
+  // an angle a hair below 0 (one head unit less the same in degrees, say) wraps into [0, 2 pi), not onto 2 pi
+  EXPECT_LT(wrapTwoPi(-1e-17), 2 * kPi);
+  EXPECT_LT(wrapTwoPi(-std::numeric_limits<double>::denorm_min()), 2 * kPi);
   EXPECT_NEAR(angleDiff(deg2rad(359), deg2rad(1)), deg2rad(-2), 1e-12);
   EXPECT_NEAR(rad2deg(deg2rad(42.0)), 42.0, 1e-12);
 }

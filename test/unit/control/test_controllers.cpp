@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/control/vehicle_control.h"
 #include "offshore_gnc/models/auv.h"
 
@@ -119,4 +120,58 @@ TEST(Acolor, TheSurgeCommandHoldsGuidancesSpeedOnTheModel) {
   EXPECT_EQ(p.surge_command_for(0.0), 0.0);
   EXPECT_EQ(p.surge_command_for(kNan), 0.0);
   EXPECT_EQ(p.surge_command_for(10.0), 1.0);  // beyond full thrust
+}
+
+namespace {
+MotionReference holdAt(double n, double e, double heading, double depth = 2.0) {
+  MotionReference r;
+  r.mode = ReferenceMode::kHold;
+  r.point = Eigen::Vector3d(n, e, depth);
+  r.heading = r.path_angle = heading;
+  r.depth = depth;
+  return r;
+}
+}  // namespace
+
+TEST(Acolor, HoldsAPointWithItsVectoredThrustersOnlyWithGains) {
+  VehicleState s;
+  s.position = Eigen::Vector3d(0, 0, 2);
+  s.yaw = kPi / 2;  // facing east: north is to port
+  AcolorController none;  // the thesis' aColor: no dynamic positioning, it stops and holds its depth
+  auto ch = none.update(s, holdAt(3, 0, kPi / 2));
+  EXPECT_EQ(ch[4], 1500);
+  EXPECT_EQ(ch[5], 1500);
+  AcolorControlParams p;
+  p.hold = {0.15, 0.0, 0.3, 0.6, 0.2};  // config/control/acolor_sim.yaml
+  AcolorController dp(p);
+  ch = dp.update(s, holdAt(3, 0, kPi / 2));  // 3 m north of it
+  EXPECT_EQ(ch[5], AcolorController::pwm(-0.45));  // sway to port (channel 6), 0.15 x 3
+  EXPECT_EQ(ch[4], 1500);                          // nothing ahead or astern
+  s.velocity = Eigen::Vector3d(0, -0.5, 0);        // already moving north (to port) at 0.5 m/s: damped
+  EXPECT_EQ(dp.update(s, holdAt(3, 0, kPi / 2))[5], AcolorController::pwm(-0.45 + 0.15));
+  s.velocity.setZero();
+  EXPECT_EQ(dp.update(s, holdAt(-30, 0, kPi / 2))[5], AcolorController::pwm(0.6));  // bounded
+  EXPECT_EQ(dp.update(s, follow(kPi / 2, 0.5))[5], 1500);  // following: no sway
+}
+
+TEST(Girona500, HoldingTurnsTheBowIntoALateralDemandItsSwayThrusterCannotMeet) {
+  // Beam on to a cross current the 40 N sway thruster gives up (0.3 m/s needs about 46 N): holding, the heading
+  // turns from guidance's toward the demand until the thruster's part of it fits (hold_crab); following, it keeps
+  // guidance's (max_crab 0, the thesis' heading).
+  Girona500ControlParams p;
+  Girona500Controller g(p);
+  VehicleState s;
+  s.position = Eigen::Vector3d(0, -1.0, 2);  // 1 m west of the point, facing north: the demand is east, abeam
+  for (int i = 0; i < 300; ++i) g.update(s, holdAt(0, 0, 0.0));
+  const Girona500Out held = g.update(s, holdAt(0, 0, 0.0));
+  EXPECT_GT(held.tau(3), 1.0);  // a yaw moment toward the east (starboard)
+  p.hold_crab = 0.0;
+  Girona500Controller fixed(p);
+  for (int i = 0; i < 300; ++i) fixed.update(s, holdAt(0, 0, 0.0));
+  EXPECT_NEAR(fixed.update(s, holdAt(0, 0, 0.0)).tau(3), 0.0, 1e-6);
+  Girona500Controller following;
+  MotionReference f = follow(0.0, 0.3, 2.0);
+  f.point = Eigen::Vector3d(0, 0, 2);
+  for (int i = 0; i < 300; ++i) following.update(s, f);
+  EXPECT_NEAR(following.update(s, f).tau(3), 0.0, 1.0);
 }

@@ -367,3 +367,21 @@ TEST(Metrics, CsvColumnWithModeFilter) {
   std::istringstream bad("t,x\n0,1\n");
   EXPECT_THROW(readCsvColumn(bad, "cross_track_error"), std::runtime_error);
 }
+
+TEST(Los, ANewPathEndingWhereItHoldsKeepsHolding) {
+  // The AUV mission's ascent sends the hold at a new depth every half second: no restart on the lead-in leg (it
+  // turned the hold into path following for a moment), the new depth held at once. A path ending elsewhere restarts.
+  LosParams p = plain();
+  p.acceptance_radius = 0.5;  // the Girona500's sphere
+  p.sphere = true;
+  LosGuidance g(p);
+  g.setPath({V3(0, 0, 3), V3(2, 0, 3)});
+  ASSERT_EQ(g.update(at(2.2, 0.3, 3), 0.1).mode, Mode::kStationKeeping);
+  g.setPath({V3(0, 0, 2.9), V3(2, 0, 2.9)});
+  const auto o = g.update(at(1.0, 0.6, 3), 0.1);  // 1.2 m off: a fresh path would follow the lead-in again
+  EXPECT_EQ(o.mode, Mode::kStationKeeping);
+  EXPECT_NEAR(o.desired_depth, 2.9, 1e-12);
+  EXPECT_NEAR(o.path_angle, 0.0, 1e-12);
+  g.setPath({V3(0, 0, 2.9), V3(5, 0, 2.9)});
+  EXPECT_EQ(g.update(at(1.0, 0.6, 3), 0.1).mode, Mode::kFollowPath);
+}

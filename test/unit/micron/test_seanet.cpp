@@ -147,11 +147,19 @@ TEST(SeaNetGolden, HeadDataFromTheLayout) {
   EXPECT_NEAR(g.bearingOf(4000), deg2rad(315.0), 1e-12);
 }
 
-TEST(SeaNet, FourBitDataIsUnpackedHighNibbleFirst) {
+TEST(SeaNet, FourBitDataIsUnpackedHighNibbleFirstByDefaultTheOtherOrderSelectable) {
   HeadData h;
   h.hd_ctrl = 0;  // adc8on off
   h.data = {0xF1, 0x0A};
-  EXPECT_EQ(h.bins(), (std::vector<std::uint8_t>{240, 16, 0, 160}));
+  EXPECT_EQ(h.bins(), (std::vector<std::uint8_t>{255, 17, 0, 170}));  // level 15 is the 8-bit mode's 255
+  FourBitFormat f;
+  f.order = "low_first";
+  f.scale = 16;
+  EXPECT_EQ(h.bins(f), (std::vector<std::uint8_t>{16, 240, 160, 0}));
+  f.scale = 15;
+  EXPECT_THROW(FourBitFormat::table().validate(f), ConfigError);
+  h.hd_ctrl = kAdc8On;  // 8-bit data as sent, whatever the 4-bit format
+  EXPECT_EQ(h.bins(f), h.data);
 }
 
 TEST(SeaNet, ResynchronisesAfterGarbageAndDamage) {

@@ -30,13 +30,15 @@ TEST(AuvMission, FirstConfirmedDetectionStopsTheSearch) {
   EXPECT_FALSE(m.onDetection({10, -8, 5}, 21.0));  // clutter elsewhere
   EXPECT_TRUE(m.onDetection({41, 3.4, 5}, 25.0));  // same object again: confirmed
   EXPECT_EQ(m.phase(), AuvPhase::TargetFound);
-  EXPECT_TRUE(m.thrustersOff());
+  EXPECT_TRUE(m.searchOver());
+  EXPECT_FALSE(m.finished());  // holding, not yet recovered
   ASSERT_TRUE(m.target().has_value());
   EXPECT_NEAR(m.target()->x(), 40.5, 1e-9);
   EXPECT_NEAR(m.target()->y(), 3.2, 1e-9);
   EXPECT_NEAR(m.detectionTime(), 15.0, 1e-9);
-  EXPECT_FALSE(m.onDetection({10, -8, 5}, 30.0));  // after the stop nothing changes
+  EXPECT_FALSE(m.onDetection({10, -8, 5}, 30.0));  // another object while holding: the target stays
   EXPECT_NEAR(m.target()->x(), 40.5, 1e-9);
+  EXPECT_EQ(m.counters().get("detection_other_object"), 1u);
 }
 
 TEST(AuvMission, StaleCandidatesAreForgotten) {
@@ -55,7 +57,8 @@ TEST(AuvMission, NoTargetAndBadInput) {
   EXPECT_EQ(m.counters().get("detection_not_finite"), 1u);
   m.onCoverageFinished(300.0);
   EXPECT_EQ(m.phase(), AuvPhase::NoTarget);
-  EXPECT_TRUE(m.finished());
+  EXPECT_TRUE(m.noTarget());
+  EXPECT_FALSE(m.finished());
   EXPECT_FALSE(m.target().has_value());
   EXPECT_NE(m.detail().find("without a confirmed detection"), std::string::npos);
   EXPECT_THROW(AuvMission(auvParams(0, 2.0, 60.0)), ConfigError);
@@ -84,7 +87,8 @@ TEST(UsvMission, TransitToStandoffThenArrive) {
   EXPECT_EQ(m.pathVersion(), 1);
   m.onPathFinished(60.0);
   EXPECT_EQ(m.phase(), UsvPhase::Arrived);
-  EXPECT_TRUE(m.finished());
+  EXPECT_TRUE(m.arrived());
+  EXPECT_FALSE(m.finished());  // the mission ends with the AUV recovered
 }
 
 TEST(UsvMission, OnStationOnceWithinItsRadiusOfThePointGuidanceHolds) {
@@ -192,11 +196,14 @@ TEST(AuvMission, StartsAfterTheDelayAndSaysWhatGuidanceAndTheUsvMustBeTold) {
   m.onGuidance(guidance::Mode::kStationKeeping, 13.0);  // not yet following: ignored
   EXPECT_EQ(m.phase(), AuvPhase::Coverage);
   m.onGuidance(guidance::Mode::kFollowPath, 14.0);
+  m.onPose({30, 3, 3}, 0.0, 15.0);  // heading north, 10 m short of what it will find
   EXPECT_FALSE(m.onDetection({40, 3, 3}, 20.0));
   EXPECT_TRUE(m.onDetection({40.2, 3, 3}, 30.0));
-  auto stop = m.takePath();
-  ASSERT_TRUE(stop);
-  EXPECT_TRUE(stop->empty());  // thrusters off
+  auto hold = m.takePath();  // keep the spot: 5 m short of the target on the line from the vehicle, facing it
+  ASSERT_TRUE(hold);
+  ASSERT_EQ(hold->size(), 2u);
+  EXPECT_LT((hold->back() - Eigen::Vector3d(35.1, 3, 3)).norm(), 1e-9);
+  EXPECT_NEAR(hold->front().x(), 33.1, 1e-9);  // the lead-in along the heading to the target
   auto t = m.takeTarget();
   ASSERT_TRUE(t);
   EXPECT_NEAR(t->x(), 40.1, 1e-9);
@@ -205,16 +212,21 @@ TEST(AuvMission, StartsAfterTheDelayAndSaysWhatGuidanceAndTheUsvMustBeTold) {
   EXPECT_EQ(m.phase(), AuvPhase::TargetFound);
 }
 
-TEST(AuvMission, EndOfCoverageWithoutATargetStops) {
+TEST(AuvMission, EndOfCoverageWithoutATargetHoldsThenComesUp) {
   AuvMission m(auvParams());
   m.start(0.0);
   ASSERT_TRUE(m.takePath());
   m.onGuidance(guidance::Mode::kFollowPath, 1.0);
+  m.onPose({60, 10, 3}, 0.0, 299.0);
   m.onGuidance(guidance::Mode::kStationKeeping, 300.0);
   EXPECT_EQ(m.phase(), AuvPhase::NoTarget);
-  auto stop = m.takePath();
-  ASSERT_TRUE(stop);
-  EXPECT_TRUE(stop->empty());
+  auto hold = m.takePath();  // where it ended
+  ASSERT_TRUE(hold);
+  EXPECT_LT((hold->back() - Eigen::Vector3d(60, 10, 3)).norm(), 1e-9);
+  m.tick(300.5);  // up at once: nothing to wait for
+  EXPECT_EQ(m.phase(), AuvPhase::Ascent);
+  EXPECT_DOUBLE_EQ(m.searchEndedAt(), 300.0);
+  EXPECT_NE(m.detail().find("without a confirmed detection"), std::string::npos) << m.detail();
 }
 
 TEST(UsvMission, HoldsWhereItStartsThenFollowsTheTransitAndArrives) {
@@ -283,4 +295,251 @@ TEST(UsvMission, ATransitThatWouldLeaveAConcaveRegionIsRefused) {
   EXPECT_NE(m.refusal().find("would leave the operating region"), std::string::npos) << m.refusal();
   EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
   EXPECT_TRUE(m.onTarget({10, 15}, 2.0));  // down its own arm: inside all the way
+}
+
+// ------------------------------------------------------------------ after the find (issue 36)
+namespace {
+// An AUV holding at (35, 3, 3), 5 m south of a target confirmed at (40, 3).
+void holding(AuvMission& m) {
+  m.start(0.0);
+  m.onPose({30, 3, 3}, 0.0, 10.0);
+  m.onDetection({40, 3, 3}, 20.0);
+  m.onDetection({40, 3, 3}, 30.0);
+  EXPECT_EQ(m.phase(), AuvPhase::TargetFound);
+  (void)m.takePath();
+  (void)m.takeTarget();
+}
+
+// Drives the ascent tick by tick (the nodelet's 0.5 s timer), the vehicle following the depth reference exactly;
+// returns the depth references seen.
+std::vector<double> ascend(AuvMission& m, double t0, double t1) {
+  std::vector<double> depths;
+  for (double t = t0; t <= t1; t += 0.5) {
+    m.tick(t);
+    if (auto p = m.takePath()) depths.push_back(p->back().z());
+    m.onPose({m.holdPoint().x(), m.holdPoint().y(), m.holdPoint().z()}, 0.0, t);
+  }
+  return depths;
+}
+}  // namespace
+
+TEST(AuvMission, KeepsTheSpotFacingTheTargetAndResendsItWhenRefined) {
+  AuvMission m(auvParams());
+  holding(m);
+  EXPECT_LT((m.holdPoint() - Eigen::Vector3d(35, 3, 3)).norm(), 1e-9);
+  EXPECT_TRUE(std::isnan(m.onStationSince()));
+  m.onPose({35.5, 3.2, 3}, 0.0, 40.0);  // within station_radius: holding from here
+  EXPECT_DOUBLE_EQ(m.onStationSince(), 40.0);
+  // the sonar goes on seeing it: the mean moves; resent once it moved refine_distance (0.5 m) from the one sent
+  EXPECT_FALSE(m.onDetection({40.6, 3, 3}, 50.0));  // mean 40.2: not yet
+  EXPECT_FALSE(m.takeTarget());
+  EXPECT_FALSE(m.onDetection({41.6, 3, 3}, 60.0));  // mean 40.55
+  auto t = m.takeTarget();
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(t->x(), 40.55, 1e-9);
+  EXPECT_EQ(m.counters().get("target_resent"), 1u);
+  EXPECT_LT((m.holdPoint() - Eigen::Vector3d(35, 3, 3)).norm(), 1e-9);  // the spot stays where it was
+  EXPECT_EQ(m.phase(), AuvPhase::TargetFound);
+}
+
+TEST(AuvMission, ComesUpWhenTheUsvArrivesClearOfItAtTheBoundedRate) {
+  AuvMission m(auvParams());
+  holding(m);
+  m.onUsvStatus(UsvPhase::Transit, {20, 3}, {38, 3}, 60.0);
+  EXPECT_EQ(m.phase(), AuvPhase::TargetFound);  // still on its way
+  m.onUsvStatus(UsvPhase::Arrived, {37, 3}, {38, 3}, 100.0);
+  ASSERT_EQ(m.phase(), AuvPhase::Ascent);
+  EXPECT_NE(m.detail().find("the USV has arrived"), std::string::npos) << m.detail();
+  // the USV will hold 3 m from the spot: first 10 m (surface_clearance) clear of it at depth, facing away
+  EXPECT_LT((m.holdPoint() - Eigen::Vector3d(28, 3, 3)).norm(), 1e-9);
+  auto clear = m.takePath();
+  ASSERT_TRUE(clear);
+  EXPECT_LT((clear->back() - m.holdPoint()).norm(), 1e-9);
+  EXPECT_DOUBLE_EQ(clear->front().z(), 3.0);
+  m.tick(101.0);
+  EXPECT_FALSE(m.takePath());  // not there yet: no ramp
+  const std::vector<double> depths = ascend(m, 110.0, 150.0);
+  ASSERT_GE(depths.size(), 30u);
+  for (std::size_t i = 1; i < depths.size(); ++i) EXPECT_LE(depths[i - 1] - depths[i], 0.1 * 0.5 + 1e-9);  // ascent_rate
+  EXPECT_DOUBLE_EQ(depths.back(), 0.0);
+  EXPECT_EQ(m.phase(), AuvPhase::Surfaced);
+  EXPECT_TRUE(m.stationary());
+  m.onPose({29.5, 3, 0}, 0.0, 151.0);  // 1.5 m off its point: not stationary
+  EXPECT_FALSE(m.stationary());
+  m.onUsvStatus(UsvPhase::Recovered, {31, 3}, {31, 3}, 160.0);
+  EXPECT_EQ(m.phase(), AuvPhase::Recovered);
+  EXPECT_TRUE(m.finished());
+}
+
+TEST(AuvMission, ComesUpAfterTheHoldTimeoutOrASilentUsv) {
+  AuvMissionParams p = auvParams();
+  p.hold_timeout = 100.0;
+  p.usv_timeout = 1000.0;
+  AuvMission a(p);
+  holding(a);
+  for (double t = 31.0; t < 129.9; t += 0.5) a.tick(t);
+  EXPECT_EQ(a.phase(), AuvPhase::TargetFound);
+  a.tick(130.0);
+  EXPECT_EQ(a.phase(), AuvPhase::Ascent);
+  EXPECT_NE(a.detail().find("without the USV's arrival"), std::string::npos) << a.detail();
+  // a lost link or a dead USV stack: its status stops
+  p = auvParams();
+  p.usv_timeout = 30.0;
+  AuvMission b(p);
+  holding(b);
+  b.onUsvStatus(UsvPhase::Transit, {0, 0}, {37, 3}, 40.0);
+  b.tick(69.5);
+  EXPECT_EQ(b.phase(), AuvPhase::TargetFound);
+  b.tick(70.0);
+  EXPECT_EQ(b.phase(), AuvPhase::Ascent);
+  EXPECT_NE(b.detail().find("no status from the USV"), std::string::npos) << b.detail();
+  ascend(b, 70.5, 120.0);
+  EXPECT_EQ(b.phase(), AuvPhase::Surfaced);  // and holds there
+}
+
+TEST(AuvMission, TheSafetySupervisorsSurfaceIsNotUndone) {
+  AuvMission m(auvParams());
+  holding(m);
+  m.onSafetySurface(50.0);
+  ASSERT_EQ(m.phase(), AuvPhase::Ascent);
+  EXPECT_LT((m.holdPoint() - Eigen::Vector3d(35, 3, 3)).norm(), 1e-9);  // up where it is: no move at depth first
+  m.onPose({35, 3, 0.2}, 0.0, 60.0);  // the override brought it up meanwhile
+  m.tick(60.0);
+  auto p = m.takePath();
+  ASSERT_TRUE(p);
+  EXPECT_LE(p->back().z(), 0.2);  // the ramp goes on from there, not from 3 m
+  // during the search the supervisor's surface is its own business (released, the search goes on)
+  AuvMission s(auvParams());
+  s.start(0.0);
+  s.onSafetySurface(5.0);
+  EXPECT_EQ(s.phase(), AuvPhase::Coverage);
+}
+
+namespace {
+// A USV that arrived at (42, 3) with its bow into a current from the west (heading west), and the AUV surfaced at
+// (50, 0): downstream of it is east.
+void arrived(UsvMission& m) {
+  m.setBowReach(5.3);
+  m.onPose({0, 3}, -kPi / 2, 0.0);
+  EXPECT_TRUE(m.onTarget({45, 3}, 1.0));
+  m.onPathFinished(100.0);
+  for (double t = 100.0; t < 160.0; t += 0.5) m.onPose({42, 3}, -kPi / 2, t);  // weathervaned, west
+  (void)m.takePath();
+}
+}  // namespace
+
+TEST(UsvMission, RecoversTheSurfacedAuvDownstreamBowOn) {
+  UsvMission m;
+  arrived(m);
+  m.onAuvStatus(AuvPhase::Ascent, {50, 0, 1}, false, 160.0);
+  EXPECT_EQ(m.phase(), UsvPhase::Arrived);  // not at the surface yet
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
+  ASSERT_EQ(m.phase(), UsvPhase::Recovery);
+  // the bow recovery_distance (4 m) off the AUV: the reference point 4 + 5.3 m east of it, the run-in 10 m farther
+  EXPECT_LT((m.recoveryPoint() - Eigen::Vector2d(50, 9.3)).norm(), 1e-9);
+  auto run_in = m.takePath();
+  ASSERT_TRUE(run_in);
+  EXPECT_LT((run_in->back() - Eigen::Vector2d(50, 19.3)).norm(), 1e-9);
+  for (const auto& w : *run_in) EXPECT_GE((w - Eigen::Vector2d(50, 0)).norm(), 4.0);
+  // guidance still holds the old station for a step: that is not being on station at the run-in
+  m.onGuidance(guidance::Mode::kStationKeeping, 0.0, 161.1, Eigen::Vector2d(42, 3));
+  m.onPose({42, 3}, -kPi / 2, 161.2);
+  EXPECT_TRUE(std::isnan(m.onStationSince()));
+  // at the run-in: close in along the axis, bow on (a hold path whose lead-in heads west), once the AUV has held its
+  // point for settle_time (10 s)
+  m.onPose({50, 18}, -kPi / 2, 200.0);
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 200.0);
+  EXPECT_FALSE(m.takePath());
+  for (double t = 200.5; t < 209.9; t += 0.5) m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, t);
+  EXPECT_FALSE(m.takePath());
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 210.0);
+  auto in = m.takePath();
+  ASSERT_TRUE(in);
+  EXPECT_LT((in->back() - Eigen::Vector2d(50, 9.3)).norm(), 1e-9);
+  EXPECT_LT(in->front().y(), in->back().y() + 1e-9 + 2.0);
+  EXPECT_GT(in->front().y(), in->back().y());
+  // on station with the AUV stationary for settle_time: RECOVERED; a moment off station restarts the count
+  for (double t = 210.5; t <= 215.0; t += 0.5) {
+    m.onPose({50, 9.0}, -kPi / 2, t);
+    m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, t);
+  }
+  m.onPose({50, 11.0}, -kPi / 2, 215.5);
+  m.tick(215.5);
+  for (double t = 216.0; t < 225.9; t += 0.5) {
+    m.onPose({50, 9.0}, -kPi / 2, t);
+    m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, t);
+  }
+  EXPECT_EQ(m.phase(), UsvPhase::Recovery);
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 226.0);
+  EXPECT_EQ(m.phase(), UsvPhase::Recovered);
+  EXPECT_TRUE(m.finished());
+  EXPECT_DOUBLE_EQ(m.recoveredAt(), 226.0);
+}
+
+TEST(UsvMission, KeepsItsDistanceFromAnAuvThatMoves) {
+  UsvMission m;
+  arrived(m);
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
+  (void)m.takePath();
+  m.onPose({50, 18}, -kPi / 2, 200.0);
+  for (double t = 200.0; t <= 210.0; t += 0.5) m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, t);
+  auto in = m.takePath();  // closing in
+  ASSERT_TRUE(in);
+  EXPECT_LT((in->back() - Eigen::Vector2d(50, 9.3)).norm(), 1e-9);
+  // it stops holding its point (a swing, a lost grip on the current): back to the run-in at once
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0.8, 0}, false, 210.5);
+  auto out = m.takePath();
+  ASSERT_TRUE(out);
+  EXPECT_LT((out->back() - Eigen::Vector2d(50, 0.8 + 9.3 + 10.0)).norm(), 1e-9);
+  // the AUV drifts downstream toward the USV (it cannot hold): replanned from the run-in, 2 m at a time
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 2.5, 0}, false, 211.0);
+  EXPECT_FALSE(m.takePath());  // 1.7 m
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 3.0, 0}, false, 212.0);
+  auto back = m.takePath();
+  ASSERT_TRUE(back);
+  EXPECT_LT((back->back() - Eigen::Vector2d(50, 3.0 + 9.3 + 10.0)).norm(), 1e-9);
+  for (double t = 212.5; t < 260.0; t += 0.5) {
+    m.onPose({50, 22.3}, -kPi / 2, t);
+    m.onAuvStatus(AuvPhase::Surfaced, {50, 3.0, 0}, false, t);
+  }
+  EXPECT_EQ(m.phase(), UsvPhase::Recovery);  // never closes in on a moving AUV, never calls it recovered
+  EXPECT_FALSE(m.takePath());
+}
+
+TEST(UsvMission, RoundsTheAuvWhenTheWayToTheRunInPassesClose) {
+  UsvMission m;
+  arrived(m);
+  m.onPose({50, -12}, -kPi / 2, 160.0);  // upstream of the AUV, on the line through it
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
+  auto p = m.takePath();
+  ASSERT_TRUE(p);
+  // abeam of the AUV 9.3 m off (bow reach + recovery distance) on the USV's side, then the run-in
+  bool abeam = false;
+  for (const auto& w : *p) abeam |= (w - Eigen::Vector2d(50 - 9.3, 0)).norm() < 1e-9 || (w - Eigen::Vector2d(50 + 9.3, 0)).norm() < 1e-9;
+  EXPECT_TRUE(abeam);
+  for (std::size_t i = 1; i < p->size(); ++i) {  // no leg passes closer than 0.7 of that (the first, from upstream)
+    const Eigen::Vector2d a = (*p)[i - 1], b = (*p)[i], c(50, 0);
+    const double k = std::clamp((c - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    EXPECT_GT((a + k * (b - a) - c).norm(), 0.7 * 9.3) << i;
+  }
+}
+
+TEST(UsvMission, WithoutATargetGoesStraightToRecovery) {
+  UsvMission m;
+  m.onPose({0, 0}, 0.0, 0.0);
+  m.onAuvStatus(AuvPhase::Coverage, {30, 0, 3}, false, 10.0);
+  EXPECT_EQ(m.phase(), UsvPhase::StationKeeping);
+  m.onAuvStatus(AuvPhase::Surfaced, {40, 5, 0}, true, 300.0);
+  EXPECT_EQ(m.phase(), UsvPhase::Recovery);
+  EXPECT_FALSE(m.arrived());
+}
+
+TEST(MissionPhases, NamesRoundTrip) {
+  for (auto p : {AuvPhase::Idle, AuvPhase::Coverage, AuvPhase::TargetFound, AuvPhase::NoTarget, AuvPhase::Ascent,
+                 AuvPhase::Surfaced, AuvPhase::Recovered})
+    EXPECT_EQ(auvPhaseFromString(toString(p)), p);
+  for (auto p : {UsvPhase::StationKeeping, UsvPhase::Transit, UsvPhase::Arrived, UsvPhase::Recovery,
+                 UsvPhase::Recovered, UsvPhase::Manual, UsvPhase::PeerLost})
+    EXPECT_EQ(usvPhaseFromString(toString(p)), p);
+  EXPECT_FALSE(auvPhaseFromString("ABORTED"));
 }
