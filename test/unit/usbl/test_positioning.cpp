@@ -18,6 +18,9 @@ BeaconSimConfig noiseless() {
   c.range_sigma = 0;
   c.angle_sigma = 0;
   c.dropout_probability = 0;
+  c.sound_speed_error = 0;  // the field's effects off (their statistics: test_beacon_sim.cpp)
+  c.multipath_probability = 0;
+  c.burst_probability = 0;
   c.mount.offset = {1.5, -0.4, 0.8};
   c.mount.yaw = deg2rad(20);
   c.mount.pitch = deg2rad(3);
