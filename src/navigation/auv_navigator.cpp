@@ -43,6 +43,8 @@ const ParamTable<AuvNavigatorConfig>& AuvNavigatorConfig::table() {
               "chi-square gate on a fix's squared Mahalanobis distance (3 dof: 16.27 = 99.9 %)")
       .integer("max_rejects_in_row", &P::max_rejects_in_row, 1, 1000,
                "gated fixes in a row after which the next gated fix re-initialises the filter, if they agree")
+      .integer("confirm_fixes", &P::confirm_fixes, 1, 10,
+               "fixes agreeing with a start that confirm it; before, two gated fixes in a row that agree restart it")
       .number("accel_psd_h", &P::accel_psd_h, 1e-6, 100.0, "m^2/s^3",
               "process noise: white-acceleration spectral density, north and east")
       .number("accel_psd_v", &P::accel_psd_v, 1e-6, 100.0, "m^2/s^3",
@@ -221,6 +223,7 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
 bool AuvNavigator::applyFix(Filter& f, const Input& in, bool first) {
   propagate(f, in.t);
   bool reinit = false;
+  int n_agreeing = 1;
   if (f.initialised) {
     const Eigen::Vector3d y = in.v - f.x.segment<3>(kPos);
     const Eigen::Matrix3d S = f.P.topLeftCorner<3, 3>() + in.cov;
@@ -230,6 +233,7 @@ bool AuvNavigator::applyFix(Filter& f, const Input& in, bool first) {
       H.middleCols<3>(kPos).setIdentity();
       update<3>(f, H, y, in.cov);
       f.rejects_in_row = 0;
+      ++f.agreeing;
       f.fix_t = in.t;
       count(first, "fix_accepted");
       return true;
@@ -237,9 +241,12 @@ bool AuvNavigator::applyFix(Filter& f, const Input& in, bool first) {
     // Outliers (a reflected acoustic path) are gated one by one. A streak of gated fixes that agree with each other
     // says the estimate is wrong instead (a missed jump, a diverged dead reckoning): after max_rejects_in_row of
     // them the filter starts again from this fix, so the gate cannot lock it out forever. Scattered ones do not.
-    const int n = std::min(f.rejects_in_row + 1, static_cast<int>(f.streak.size()));
+    // A start no fix has yet agreed with may itself have been an outlier: there two agreeing gated fixes suffice.
+    const bool confirmed = f.agreeing >= cfg_.confirm_fixes;
+    const int needed = confirmed ? cfg_.max_rejects_in_row : 1;
+    const int n = std::min({f.rejects_in_row + 1, needed + 1, static_cast<int>(f.streak.size())});
     f.streak[static_cast<std::size_t>(f.rejects_in_row) % f.streak.size()] << y, in.cov.trace() / 3.0;
-    const bool enough = f.rejects_in_row >= cfg_.max_rejects_in_row;
+    const bool enough = f.rejects_in_row >= needed;
     if (!enough || !streakAgrees(f, n)) {
       if (enough) count(first, "reinit_refused_scattered");
       ++f.rejects_in_row;
@@ -247,7 +254,9 @@ bool AuvNavigator::applyFix(Filter& f, const Input& in, bool first) {
       return false;
     }
     reinit = true;
+    n_agreeing = n;
     count(first, "reinit");
+    if (!confirmed) count(first, "reinit_unconfirmed");
   }
   // The DVL's velocity is independent of a position jump: keep it when the DVL is measuring, else start at rest.
   // The current and the heading bias are too: a re-initialisation keeps them, the first fix starts them at zero
@@ -271,18 +280,24 @@ bool AuvNavigator::applyFix(Filter& f, const Input& in, bool first) {
     f.P.block<3, 3>(kVel, kVel) = Eigen::Matrix3d::Identity() * cfg_.init_velocity_sigma * cfg_.init_velocity_sigma;
   }
   f.initialised = true;
+  f.agreeing = reinit ? n_agreeing : 1;  // a re-initialisation on a streak: its fixes agreed with each other
   f.rejects_in_row = 0;
   f.fix_t = in.t;
   count(first, "fix_accepted");
   return true;
 }
 
-// The first n innovations of the streak each within the gate of their mean (by the fix's own variance).
+// The latest n innovations of the streak (the current fix's included) each within the gate of their mean (by the
+// fix's own variance).
 bool AuvNavigator::streakAgrees(const Filter& f, int n) const {
+  const std::size_t size = f.streak.size();
+  const auto at = [&](int k) -> const Eigen::Vector4d& {  // k-th latest
+    return f.streak[(static_cast<std::size_t>(f.rejects_in_row) + size - static_cast<std::size_t>(k)) % size];
+  };
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int i = 0; i < n; ++i) mean += f.streak[i].head<3>() / n;
-  for (int i = 0; i < n; ++i)
-    if ((f.streak[i].head<3>() - mean).squaredNorm() > cfg_.gate_chi2 * f.streak[i][3]) return false;
+  for (int k = 0; k < n; ++k) mean += at(k).head<3>() / n;
+  for (int k = 0; k < n; ++k)
+    if ((at(k).head<3>() - mean).squaredNorm() > cfg_.gate_chi2 * at(k)[3]) return false;
   return true;
 }
 

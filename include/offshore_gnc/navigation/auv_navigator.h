@@ -27,6 +27,9 @@ struct AuvNavigatorConfig {
   double gate_chi2 = 16.27;           // Mahalanobis gate on fixes (chi-square, 3 dof, 99.9 %)
   int max_rejects_in_row = 5;         // after this many gated fixes in a row the next gated one re-initialises,
                                       // when they agree with each other (an outlier streak does not)
+  int confirm_fixes = 2;              // a start is confirmed when this many fixes agree with it; before that the
+                                      // second gated fix in a row re-initialises, if the two agree (a first fix
+                                      // that was an outlier)
   double accel_psd_h = 0.05;          // white-acceleration spectral density, north and east [m^2/s^3]
   double accel_psd_v = 0.01;          // the same, down [m^2/s^3]
   double position_psd = 0.01;         // horizontal position random walk: unmodelled DVL/heading errors [m^2/s]
@@ -85,7 +88,8 @@ class AuvNavigator {
   AuvNavEstimate estimate(double t) const;
 
   // "fix_accepted", "fix_rejected_gate", "fix_too_old", "bad_input", "reinit", "reinit_refused_scattered" (a
-  // streak of gated fixes that did not agree with each other), "time_reset", "velocity_without_heading". Each input is counted once, when it arrives, not again when replayed.
+  // streak of gated fixes that did not agree with each other), "reinit_unconfirmed" (of the re-initialisations,
+  // those of a start not yet confirmed), "time_reset", "velocity_without_heading". Each input is counted once, when it arrives, not again when replayed.
   const Counters& counters() const { return counters_; }
   const AuvNavigatorConfig& config() const { return cfg_; }
 
@@ -98,6 +102,7 @@ class AuvNavigator {
     double yaw = 0.0, yaw_rate = 0.0;
     double heading_t = -1e300, dvl_t = -1e300, fix_t = -1e300;
     int rejects_in_row = 0;
+    int agreeing = 0;  // fixes accepted since the latest (re-)initialisation, that one included
     // The innovations of the latest gated fixes in a row (ring by rejects_in_row) and their variance: a
     // re-initialisation needs them to agree, i.e. the estimate is off, not the fixes scattered.
     std::array<Eigen::Vector4d, 8> streak{};

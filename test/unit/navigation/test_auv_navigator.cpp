@@ -193,6 +193,43 @@ TEST(AuvNavigator, ScatteredOutliersAreGatedWithoutReinitialising) {
   EXPECT_LT(dirty.rmse(), 1.2 * clean.rmse() + 0.05) << clean.rmse();
 }
 
+// 2b'. The very first fix an outlier (it happened: a reflected path 9 m off, then every good fix gated until the
+// re-initialisation 12 s later): a start no fix has agreed with yet is left on the second gated fix in a row when
+// the two agree, 4 s after it. An outlier as the second fix is gated as any other, the start kept.
+TEST(AuvNavigator, AnOutlierAsTheFirstFixIsLeftAtTheNextTwo) {
+  for (const bool dvl : {true, false}) {
+    AuvNavigator nav;
+    TrackSim sim;
+    sim.use_dvl = dvl;
+    sim.fix_sigma = 0.5;
+    sim.fix_latency = 0.0;
+    sim.fixes_on = [](double t) { return t > 0.5; };  // the outlier comes instead of the fix at 0
+    nav.heading(0.0, 0.0, 0.0);
+    EXPECT_TRUE(nav.usblFix(0.0, Eigen::Vector3d(-7.0, -5.3, 5.0), kI3 * 0.25));  // the start
+    double worst_after = 0.0;
+    sim.run(nav, 30.0, [&](const Truth& tr, const AuvNavEstimate& e) {
+      if (tr.t > 4.05) worst_after = std::max(worst_after, (e.position - tr.p).norm());
+    });
+    EXPECT_EQ(nav.counters().get("fix_rejected_gate"), 1u) << dvl;  // the fix at 2
+    EXPECT_EQ(nav.counters().get("reinit"), 1u);                     // at 4, on the fixes at 2 and 4
+    EXPECT_EQ(nav.counters().get("reinit_unconfirmed"), 1u);
+    EXPECT_LT(worst_after, 1.5) << dvl;
+    EXPECT_EQ(nav.estimate(30.0).status, NavStatus::kOk);
+  }
+  AuvNavigator nav;
+  TrackSim sim;
+  sim.fix_sigma = 0.5;
+  sim.fix_latency = 0.0;
+  sim.fixes_on = [](double t) { return t < 1.0 || t > 2.5; };  // the outlier comes instead of the fix at 2
+  double worst = 0.0;
+  sim.run(nav, 2.0);
+  EXPECT_FALSE(nav.usblFix(2.0, sim.truth.p + Eigen::Vector3d(7.0, -5.3, 0.0), kI3 * 0.25));
+  sim.run(nav, 30.0, [&](const Truth& tr, const AuvNavEstimate& e) { worst = std::max(worst, (e.position - tr.p).norm()); });
+  EXPECT_EQ(nav.counters().get("fix_rejected_gate"), 1u);
+  EXPECT_EQ(nav.counters().get("reinit"), 0u);
+  EXPECT_LT(worst, 1.5);
+}
+
 // 2c. A streak of gated fixes that scatter (outliers, not a moved vehicle) does not re-initialise the filter even
 // past max_rejects_in_row; the good fixes after it are accepted again.
 TEST(AuvNavigator, AScatteredStreakOfOutliersDoesNotReinitialise) {
@@ -417,7 +454,7 @@ TEST(AuvNavigator, StatusAndClockGoingBack) {
 // 8. Every parameter in the table; an out-of-range one is refused by the constructor.
 TEST(AuvNavigator, ConfigTableRefusesOutOfRange) {
   const auto& t = AuvNavigatorConfig::table();
-  EXPECT_EQ(t.specs().size(), 17u);
+  EXPECT_EQ(t.specs().size(), 18u);
   ASSERT_NE(t.find("gate_chi2"), nullptr);
   EXPECT_NO_THROW(AuvNavigator{AuvNavigatorConfig{}});
   AuvNavigatorConfig c;
