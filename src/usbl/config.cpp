@@ -26,7 +26,9 @@ const ParamTable<QualityLimits>& qualityLimitsTable() {
       .number("max_pose_wait", &Q::max_pose_wait_s, 0.0, 60, "s",
               "a fix waits this long for the relayed USV pose to reach its time (below max_age)")
       .number("max_depth_error", &Q::max_depth_error_m, 0.01, 1000, "m", "|USBL depth - the AUV's depth sensor| above this: rejected")
-      .number("max_depth_gap", &Q::max_depth_gap_s, 0.01, 10, "s", "a depth sample this close to the fix, else no depth gate");
+      .number("max_depth_gap", &Q::max_depth_gap_s, 0.01, 10, "s", "a depth sample this close to the fix, else no depth gate")
+      .number("water_sound_speed", &Q::water_sound_speed, 0, 1700, "m/s",
+              "the water's measured velocity of sound: ranges from the travel time with it (0: the transceiver's)");
   return t;
 }
 
