@@ -12,6 +12,10 @@ namespace closed_loop {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The relayed messages' sizes on the radio: the relay's frame (32 bytes of header, a 32-byte HMAC, the topic's
+// name) around the serialised message. /usv_gps (NavSatFix, 123 bytes) and /usv_heading (QuaternionStamped, 55)
+// go as one here (one reading, so they are lost together); /target (Target, about 200 bytes).
+constexpr std::size_t kUsvPoseBytes = (64 + 8 + 123) + (64 + 12 + 55), kTargetBytes = 64 + 7 + 200;
 
 void record(VehicleRecord& r, const VehicleState& truth, long step, const guidance::GuidanceOutput* g,
             const guidance::GuidancePipeline& pipeline) {
@@ -69,6 +73,7 @@ MissionConfig loadMission(const std::string& config_dir, const std::string& scen
   c.usv = loadUsvStack(config_dir);
   c.auv = loadAuvStack(config_dir, auv_model, scenario_file);
   c.auv.usv_gps_antenna = c.usv.sim.gps.antenna;  // the USBL's mounting is from the point /usv_gps reports
+  c.radio = sim::loadRadioParams(config_dir + "/relay/radio.yaml");
   return c;
 }
 
@@ -78,8 +83,8 @@ MissionResult runMission(const MissionConfig& cfg) {
   UsvStack usv(cfg.scenario, cfg.usv);
   AuvStack auv(cfg.scenario, cfg.auv);
   // the relay's topics over the radio: /usv_gps and /usv_heading to the AUV (best effort), /target back (reliable)
-  RadioLink<sim::GpsCompassReading> to_auv(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed);
-  RadioLink<Eigen::Vector3d> to_usv(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed + 1);
+  RadioLink<sim::GpsCompassReading> to_auv(cfg.radio, 2 * cfg.radio_seed - 1);
+  RadioLink<Eigen::Vector3d> to_usv(cfg.radio, 2 * cfg.radio_seed);
   long step = 0;
   double t = 0.0;
   std::optional<Eigen::Vector2d> wait_start;  // where the USV started waiting for the target
@@ -99,7 +104,7 @@ MissionResult runMission(const MissionConfig& cfg) {
     to_auv.setUp(link_up);
     to_usv.setUp(link_up);
     usv.step();
-    if (usv.gpsNow()) to_auv.send(usv.time(), *usv.gpsNow(), false);
+    if (usv.gpsNow()) to_auv.send(usv.time(), *usv.gpsNow(), kUsvPoseBytes, false);
     for (const auto& g : to_auv.receive(usv.time())) auv.onUsvGps(g);
     auv.setUsvTruth(usv.truth());  // the simulated acoustic channel
     auv.step();
@@ -114,7 +119,7 @@ MissionResult runMission(const MissionConfig& cfg) {
     }
     if (auto tg = auv.takeTarget()) {
       res.target = *tg;
-      to_usv.send(t, *tg, true);
+      to_usv.send(t, *tg, kTargetBytes, true);
     }
     for (const auto& tg : to_usv.receive(t)) {
       usv.onTarget(tg.head<2>(), t);
