@@ -2,4 +2,5 @@
 from setuptools import setup
 from catkin_pkg.python_setup import generate_distutils_setup
 
-setup(**generate_distutils_setup(packages=["offshore_gnc"], package_dir={"": "python"}))
+setup(**generate_distutils_setup(packages=["offshore_gnc", "offshore_gnc.ardusub", "offshore_gnc.campaign",
+                                           "offshore_gnc.testing"], package_dir={"": "python"}))

@@ -38,7 +38,7 @@ def med(rs, k):
     v = [r[k] for r in rs if r.get(k) is not None]
     return statistics.median(v) if v else None
 out = {"runs": runs}
-for k in ("usv_rmse_m", "auv_rmse_m", "auv_nav_rmse_m", "target_error_m", "usv_hold_p95_m", "usv_wait_drift_m",
+for k in ("usv_xte_est_rmse_m", "auv_xte_true_rmse_m", "auv_nav_rmse_m", "target_error_m", "usv_hold_p95_m", "usv_wait_drift_m",
           "min_clearance_m", "sim_time_s"):
     a, b = med(free, k), med(ros, k)
     out[k + "_rosfree"], out[k + "_ros"] = a, b

@@ -22,7 +22,10 @@ ws_build() {  # ws_build [extra cmake args...]
   mkdir -p "$ws/src"
   [ -L "$ws/src/offshore_gnc" ] || ln -sfn "$REPO" "$ws/src/offshore_gnc"
   local jobs; jobs="$(nproc)"
-  export CCACHE_DIR="${CCACHE_DIR:-$REPO/.ccache}"
+  # One compiler cache per user, shared by every checkout: paths are taken relative to the checkout (BASEDIR) and the
+  # build directory is not hashed, so a fresh clone (CI's, a helper's) reuses what any other checkout compiled.
+  export CCACHE_DIR="${CCACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/offshore_gnc-ccache}"
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$REPO}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
   local first=0
   [ -f "$ws/build/CMakeCache.txt" ] || first=1
   ( cd "$ws" && catkin_make -j"$jobs" \

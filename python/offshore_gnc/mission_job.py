@@ -523,9 +523,9 @@ def run(a):
                      wall_time_s=round(wall, 2), outcome=outcome, planned_faults=planned)
     print("[mission] %s: %s" % ("SUCCESS" if m["success"] else "FAILED (%s)" % m["outcome"], outcome["reason"]))
     print("[mission] metrics: " + ", ".join("%s=%s" % (k, m[k]) for k in (
-        "outcome", "usv_rmse_m", "auv_rmse_m", "target_error_m", "min_clearance_m", "auv_nav_source", "auv_nav_rmse_m",
-        "usbl_fixes_received", "usbl_fixes_rejected", "usbl_rejected_outliers", "usbl_outliers", "sim_time_s",
-        "wall_time_s")))
+        "outcome", "usv_xte_est_rmse_m", "auv_xte_true_rmse_m", "target_error_m", "min_clearance_m", "auv_nav_source",
+        "auv_nav_rmse_m", "usbl_fixes_received", "usbl_fixes_rejected", "usbl_rejected_outliers", "usbl_outliers",
+        "sim_time_s", "wall_time_s")))
     print("[mission] report: %s" % out)
     return 0 if m["success"] else 1
 

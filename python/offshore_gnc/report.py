@@ -22,7 +22,7 @@ import yaml
 from offshore_gnc import tools
 
 THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4 Girona500 AUV)
-    "usv_rmse_m": 1.5482, "usv_sd_m": 0.7764, "usv_mae_m": 1.3397, "auv_rmse_m": 0.23,
+    "usv_xte_est_rmse_m": 1.5482, "usv_xte_est_sd_m": 0.7764, "usv_xte_est_mae_m": 1.3397, "auv_xte_true_rmse_m": 0.23,
 }
 
 MODE_FOLLOW_PATH = 1  # GuidanceStatus.MODE_FOLLOW_PATH (for the plots; the metrics tool filters the same)
@@ -49,11 +49,11 @@ def tracking_metrics(path, selector=None):
 
 
 def split_tracking(status_msgs, path=None, truth=None):
-    """Cross-track figures of an AUV's GuidanceStatus samples split at the first waypoint reached: the approach
-    (leg 1, from wherever the vehicle was to the path's first switch; thesis Table 4.4 leaves it out) and the
-    tracking after it (legs 2 on). Each on the guidance's own error (on its navigation estimate) and, given the
-    followed path [(north, east)] and the true track [(t, north, east, ...)], on the truth: the true position's
-    distance from the active leg. All through the same C++ tool as the bag figures, fed CSV files."""
+    """Cross-track figures of a vehicle's GuidanceStatus samples: all of them, and split at the first waypoint
+    reached: the approach (leg 1, from wherever the vehicle was to the path's first switch; thesis Table 4.4 leaves
+    it out) and the tracking after it (legs 2 on). Each on the guidance's own error (on its navigation estimate) and,
+    given the followed path [(north, east)] and the true track [(t, north, east, ...)], on the truth: the true
+    position's distance from the active leg. All through the same C++ tool as the bag figures, fed CSV files."""
     import tempfile
     truth_xte = []
     for t, m in status_msgs:
@@ -67,7 +67,8 @@ def split_tracking(status_msgs, path=None, truth=None):
         truth_xte.append(((bn - an) * (p[1] - ae) - (be - ae) * (p[0] - an)) / length if length > 0 else float("nan"))
     out = {}
     with tempfile.TemporaryDirectory() as d:
-        for name, keep in (("approach", lambda m: m.active_leg < 2), ("tracking", lambda m: m.active_leg >= 2)):
+        for name, keep in (("all", lambda m: True), ("approach", lambda m: m.active_leg < 2),
+                           ("tracking", lambda m: m.active_leg >= 2)):
             csv = os.path.join(d, name + ".csv")
             with open(csv, "w") as f:
                 f.write("mode,cross_track_error,cross_track_error_truth\n")
@@ -432,9 +433,11 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     us = tracking_metrics(usv_bag or "", "/usv/guidance/status")
     # the path followed: the planner's when it published one (SBB waypoints included), else the mission's
     # (the last one with waypoints: the mission ends by sending an empty path)
-    followed = [m for _, m in (a["/auv/guidance/planned_path"] or a["/auv/guidance/path"]) if m.poses]
-    auv_path = path_ned(followed[-1]) if followed else None
-    au_split = split_tracking(a["/auv/guidance/status"], auv_path, auv_track)
+    def followed_path(bag, v):
+        followed = [m for _, m in (bag["/%s/guidance/planned_path" % v] or bag["/%s/guidance/path" % v]) if m.poses]
+        return path_ned(followed[-1]) if followed else None
+    au_split = split_tracking(a["/auv/guidance/status"], followed_path(a, "auv"), auv_track)
+    us_true = split_tracking(u["/usv/guidance/status"], followed_path(u, "usv"), usv_track)["all_truth"]
     au, au_approach = au_split["tracking_truth"], au_split["approach_truth"]
     # The navigation during the AUV's mission (until it reports finished); after it the AUV rises to the surface
     # and drifts while the USV transits, reported apart.
@@ -481,20 +484,27 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     held = bool((outcome or {}).get("held")) if outcome else bool(last_usv and last_usv.success)
     safety_stop = any(m.active_rule in m.active_rules and m.active_rule != "manual" and m.action >= ACTION_HOLD
                       for _, m in u["/usv/safety/transitions"] + a["/auv/safety/transitions"])
+    final_distance = (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
+                          for tt in targets_true) if usv_track and targets_true else float("nan"))
     verdict, min_clearance = judge(scenario, u["/usv/ground_truth/odom"], {
         "held": held, "auv_no_target": bool(last_auv and last_auv.phase == "NO_TARGET"),
-        "target_error": target_error, "died": bool(died), "safety_stop": safety_stop}) if scenario else ("timeout", float("nan"))
+        "target_error": target_error, "final_distance": final_distance, "died": bool(died),
+        "safety_stop": safety_stop}) if scenario else ("timeout", float("nan"))
 
     metrics = {
         "success": verdict == "success",
         "outcome": verdict,  # closed_loop/outcome.h's class; the sentence in reason
         "reason": (outcome or {}).get("reason", last_usv.detail if last_usv else "no USV status recorded"),
-        "usv_rmse_m": us["rmse"], "usv_sd_m": us["sd"], "usv_mae_m": us["mae"], "usv_xte_samples": us["n"],
-        "auv_rmse_m": au["rmse"], "auv_sd_m": au["sd"], "auv_mae_m": au["mae"], "auv_xte_samples": au["n"],
+        # cross-track errors while following a path: _est on the vehicle's navigation estimate (guidance's own, as
+        # the thesis' Table 5.1 was measured on the USV's GPS), _true the true position's distance from the leg
+        "usv_xte_est_rmse_m": us["rmse"], "usv_xte_est_sd_m": us["sd"], "usv_xte_est_mae_m": us["mae"],
+        "usv_xte_est_samples": us["n"], "usv_xte_true_rmse_m": us_true["rmse"], "usv_xte_true_samples": us_true["n"],
+        "auv_xte_true_rmse_m": au["rmse"], "auv_xte_true_sd_m": au["sd"], "auv_xte_true_mae_m": au["mae"],
+        "auv_xte_true_samples": au["n"],
         # the AUV's figures above count from the first waypoint reached (as Table 4.4); its approach apart
-        "auv_approach_rmse_m": au_approach["rmse"], "auv_approach_samples": au_approach["n"],
+        "auv_approach_xte_true_rmse_m": au_approach["rmse"], "auv_approach_xte_true_samples": au_approach["n"],
         # the same from the guidance's own cross-track error, i.e. on the AUV's navigation estimate
-        "auv_rmse_estimate_m": au_split["tracking"]["rmse"],
+        "auv_xte_est_rmse_m": au_split["tracking"]["rmse"],
         "target_error_m": target_error, "target_error_3d_m": target_error_3d,
         # what the AUV navigated on, and how well: its estimate's horizontal error against its ground truth
         "auv_nav_source": "usbl" if fixes_ok else "ins",
@@ -515,8 +525,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
         "min_clearance_m": min_clearance,  # the hull's (sim/contact.h), not the reference point's
         # where the USV really ended, against the true target (the stand-off is part of this distance)
-        "usv_final_distance_to_target_m": (min(math.hypot(usv_track[-1][1] - tt["north"], usv_track[-1][2] - tt["east"])
-                                               for tt in targets_true) if usv_track and targets_true else float("nan")),
+        "usv_final_distance_to_target_m": final_distance,
         "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95,
         "sim_time_s": sim_time, "wall_time_s": wall_time_s,
         # the simulated run alone (from the shared clock's start), what the ROS-free runner's wall_time_s measures
@@ -658,12 +667,18 @@ def _summary(out, m, scenario):
         "",
         "**%s** (%s) - %s" % ("SUCCESS" if m["success"] else "FAILED", m["outcome"], m["reason"]), "",
         "| figure | this run | thesis field test |", "| --- | --- | --- |",
-        "| USV cross-track RMSE | %s | %.4f m (Table 5.1) |" % (_fmt(m["usv_rmse_m"], " m"), th["usv_rmse_m"]),
-        "| USV cross-track SD | %s | %.4f m |" % (_fmt(m["usv_sd_m"], " m"), th["usv_sd_m"]),
-        "| USV cross-track MAE | %s | %.4f m |" % (_fmt(m["usv_mae_m"], " m"), th["usv_mae_m"]),
-        "| AUV cross-track RMSE (from the first waypoint) | %s | %.2f m (Table 4.4, Girona500) |" % (
-            _fmt(m["auv_rmse_m"], " m"), th["auv_rmse_m"]),
-        "| AUV cross-track RMSE on its approach (leg 1) | %s | |" % _fmt(m["auv_approach_rmse_m"], " m"),
+        "| USV cross-track RMSE, on its GPS estimate (guidance's own) | %s | %.4f m (Table 5.1) |" % (
+            _fmt(m["usv_xte_est_rmse_m"], " m"), th["usv_xte_est_rmse_m"]),
+        "| USV cross-track SD, on its estimate | %s | %.4f m |" % (_fmt(m["usv_xte_est_sd_m"], " m"), th["usv_xte_est_sd_m"]),
+        "| USV cross-track MAE, on its estimate | %s | %.4f m |" % (
+            _fmt(m["usv_xte_est_mae_m"], " m"), th["usv_xte_est_mae_m"]),
+        "| USV cross-track RMSE, true position | %s | |" % _fmt(m["usv_xte_true_rmse_m"], " m"),
+        "| AUV cross-track RMSE, true position, from the first waypoint | %s | %.2f m (Table 4.4, Girona500) |" % (
+            _fmt(m["auv_xte_true_rmse_m"], " m"), th["auv_xte_true_rmse_m"]),
+        "| AUV cross-track RMSE, true position, on its approach (leg 1) | %s | |" % _fmt(
+            m["auv_approach_xte_true_rmse_m"], " m"),
+        "| AUV cross-track RMSE on its estimate (guidance's own), from the first waypoint | %s | |" % _fmt(
+            m["auv_xte_est_rmse_m"], " m"),
         "| detection time | %s | |" % _fmt(m["detection_time_s"], " s"),
         "| target localisation error | %s | |" % _fmt(m["target_error_m"], " m"),
         "| minimum clearance, hull to obstacles | %s | |" % _fmt(m["min_clearance_m"], " m"),
@@ -678,7 +693,8 @@ def _summary(out, m, scenario):
             m["usbl_rejected_by_gates"], m["usbl_rejected_by_gates_outliers"], m["usbl_rejected_by_gates_unplaced"]),
         "| USV final distance to the true target | %s | |" % _fmt(m["usv_final_distance_to_target_m"], " m"),
         "| USV drift while waiting for the target | %s | |" % _fmt(m["usv_wait_drift_m"], " m"),
-        "| USV hold at the target, 95th percentile | %s | |" % _fmt(m["usv_hold_p95_m"], " m"),
+        "| USV hold at the target, 95th percentile, from on station (within station_radius) | %s | |" % _fmt(
+            m["usv_hold_p95_m"], " m"),
         "| simulated time | %s | |" % _fmt(m["sim_time_s"], " s"),
         "| wall time | %s | |" % _fmt(m["wall_time_s"], " s"),
         "", "Final phases: USV %s, AUV %s." % (m["usv_final_phase"], m["auv_final_phase"]), "",

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "offshore_gnc/common/validate.h"
@@ -31,6 +32,7 @@ void record(VehicleRecord& r, const VehicleState& truth, long step, const guidan
       const Eigen::Vector2d a = path[k - 1].head<2>(), d = path[k].head<2>() - a, p = truth.position.head<2>() - a;
       if (d.norm() > 0.0) e_truth = (d.x() * p.y() - d.y() * p.x()) / d.norm();
     }
+    r.xte_truth.emplace_back(truth.t, e_truth);
     if (k >= 2) {
       r.xte_tracking.emplace_back(truth.t, g->los.cross_track_error);
       r.xte_tracking_truth.emplace_back(truth.t, e_truth);
@@ -53,11 +55,14 @@ double percentile(std::vector<double> v, double q) {
 guidance::TrackingMetrics metricsOf(const std::vector<Eigen::Vector2d>& samples) {
   std::vector<double> e;
   for (const auto& s : samples) e.push_back(s.y());
-  return guidance::computeMetrics(e);  // NaN samples (no leg) skipped
+  guidance::TrackingMetrics m = guidance::computeMetrics(e);  // NaN samples (no leg) skipped
+  if (m.samples == 0) m.rmse = m.sd = m.mae = m.max_abs = m.mean = kNaN;  // nothing measured: unknown, not zero
+  return m;
 }
 
 void finish(VehicleRecord& r, const std::string& phase) {
   r.metrics = metricsOf(r.xte);
+  r.metrics_truth = metricsOf(r.xte_truth);
   r.tracking = metricsOf(r.xte_tracking);
   r.tracking_truth = metricsOf(r.xte_tracking_truth);
   r.approach_truth = metricsOf(r.xte_approach_truth);
@@ -93,6 +98,7 @@ MissionResult runMission(const MissionConfig& cfg) {
   res.usv_wait_drift_m = kNaN;
   res.reason = "simulated time limit reached";
   res.min_clearance_m = std::numeric_limits<double>::infinity();
+  std::pair<double, std::string> closest;  // when the hull came closest to what
   bool held = false;
   const sim::Scenario::Mission& judge = cfg.scenario.mission;
   const Fault* geofence = nullptr;
@@ -135,9 +141,13 @@ MissionResult runMission(const MissionConfig& cfg) {
     record(res.usv, usv.truth(), step, usv.guidanceStep(), usv.guidance());
     if (step % 5 == 0) {  // the hull against every true shape, a fault's obstacle included, at 20 Hz
       const auto& fault = usv.simulation().faultObstacle();
-      res.min_clearance_m = std::min(res.min_clearance_m,
-                                     sim::hullClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, cfg.scenario.world,
-                                                        fault ? std::vector<sim::Vessel>{*fault} : std::vector<sim::Vessel>{}));
+      std::string what;
+      const double c = sim::hullClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, cfg.scenario.world,
+                                          fault ? std::vector<sim::Vessel>{*fault} : std::vector<sim::Vessel>{}, &what);
+      if (c < res.min_clearance_m) {
+        res.min_clearance_m = c;
+        closest = {t, what};
+      }
     }
     if (step % 5 == 0) {
       const VehicleState& x = usv.truth();
@@ -210,10 +220,18 @@ MissionResult runMission(const MissionConfig& cfg) {
   f.target_reported = res.target.has_value();
   f.target_error_m = res.target_error_m;
   f.target_tolerance_m = judge.target_tolerance;
+  f.final_distance_m = res.usv_final_distance_to_target_m;
+  f.station_tolerance_m = cfg.usv.mission.standoff + judge.target_tolerance;
   f.min_clearance_m = std::isnan(res.min_clearance_m) ? std::numeric_limits<double>::infinity() : res.min_clearance_m;
   for (const auto* log : {&res.usv_safety, &res.auv_safety})
     for (const auto& tr : *log) f.safety_stop |= tr.to_active && tr.rule != "manual" && tr.action >= safety::Action::kHold;
   res.outcome = classify(f);
+  if (res.outcome == Outcome::kCollision) {
+    char b[160];
+    std::snprintf(b, sizeof b, "the hull touched %s at %.1f s (clearance %.2f m); ", closest.second.c_str(),
+                  closest.first, res.min_clearance_m);
+    res.reason = b + res.reason;
+  }
   res.success = res.outcome == Outcome::kSuccess;
   res.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   return res;

@@ -2,10 +2,8 @@
 // sim/contact.h), given what its bags recorded: the USV's true track (CSV t,north,east,yaw) against the scenario's
 // shapes with the hull of config/usv.yaml, and the facts only the job knows.
 //   mission_outcome --scenario FILE --usv-track CSV [--config DIR] [--held 0|1] [--auv-no-target 0|1]
-//                   [--target-error M] [--died 0|1] [--safety-stop 0|1]
+//                   [--target-error M] [--final-distance M] [--died 0|1] [--safety-stop 0|1]
 // Prints {"outcome": "...", "min_clearance_m": x} (null without obstacles); exit 2 on bad input.
-#include <yaml-cpp/yaml.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -15,6 +13,7 @@
 
 #include "offshore_gnc/closed_loop/outcome.h"
 #include "offshore_gnc/common/param_yaml.h"
+#include "offshore_gnc/mission/mission.h"
 #include "offshore_gnc/sim/contact.h"
 #include "offshore_gnc/sim/scenario.h"
 
@@ -44,6 +43,7 @@ int main(int argc, char** argv) {
       else if (a == "--held") f.held = number(a, v) != 0.0;
       else if (a == "--auv-no-target") f.auv_no_target = number(a, v) != 0.0;
       else if (a == "--target-error") f.target_error_m = number(a, v), f.target_reported = !std::isnan(f.target_error_m);
+      else if (a == "--final-distance") f.final_distance_m = number(a, v);
       else if (a == "--died") f.stack_died = number(a, v) != 0.0;
       else if (a == "--safety-stop") f.safety_stop = number(a, v) != 0.0;
       else throw ConfigError("unknown option " + a);
@@ -52,9 +52,13 @@ int main(int argc, char** argv) {
     const sim::Scenario sc = sim::loadScenario(scenario);
     f.expect_target = sc.mission.expect_target;
     f.target_tolerance_m = sc.mission.target_tolerance;
+    mission::UsvMissionParams usv_mission;  // its stand-off: how far short of the target the USV holds
+    const std::string mission_file = config + "/mission/usv.yaml";
+    readParamsYaml(loadYamlFile(mission_file), mission::UsvMissionParams::table(), usv_mission, mission_file);
+    f.station_tolerance_m = usv_mission.standoff + sc.mission.target_tolerance;
     sim::HullFootprint hull;
     const std::string vehicle = config + "/usv.yaml";
-    readParamsYaml(YAML::LoadFile(vehicle), sim::HullFootprint::table(), hull, vehicle);
+    readParamsYaml(loadYamlFile(vehicle), sim::HullFootprint::table(), hull, vehicle);
     hull.validate();
     std::ifstream in(track);
     if (!in) throw ConfigError("cannot read the track '" + track + "'");

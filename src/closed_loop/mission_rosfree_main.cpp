@@ -120,17 +120,18 @@ int main(int argc, char** argv) {
         for (std::size_t i = 0; i < row.size(); ++i) f << row[i] << (i + 1 < row.size() ? "," : "\n");
     }
     std::printf(
-        "{\"success\": %s, \"outcome\": %s, \"reason\": %s, \"usv_rmse_m\": %s, \"usv_sd_m\": %s, \"usv_mae_m\": %s, "
-        "\"usv_xte_samples\": %zu, \"auv_rmse_m\": %s, \"auv_sd_m\": %s, \"auv_mae_m\": %s, \"auv_xte_samples\": %zu, "
-        "\"auv_approach_rmse_m\": %s, \"auv_rmse_estimate_m\": %s, "
+        "{\"success\": %s, \"outcome\": %s, \"reason\": %s, \"usv_xte_est_rmse_m\": %s, \"usv_xte_est_sd_m\": %s, "
+        "\"usv_xte_est_mae_m\": %s, \"usv_xte_est_samples\": %zu, \"usv_xte_true_rmse_m\": %s, \"usv_xte_true_samples\": %zu, "
+        "\"auv_xte_true_rmse_m\": %s, \"auv_xte_true_sd_m\": %s, \"auv_xte_true_mae_m\": %s, \"auv_xte_true_samples\": %zu, "
+        "\"auv_approach_xte_true_rmse_m\": %s, \"auv_xte_est_rmse_m\": %s, "
         "\"target_error_m\": %s, \"detection_time_s\": %s, \"min_clearance_m\": %s, "
         "\"usv_final_distance_to_target_m\": %s, \"usv_wait_drift_m\": %s, \"usv_hold_p95_m\": %s, "
         "\"usv_final_phase\": %s, \"auv_final_phase\": %s, \"usv_safety\": %s, \"auv_safety\": %s, "
         "\"auv_nav_source\": %s, \"auv_nav_rmse_m\": %s, \"auv_nav_max_m\": %s, \"usbl_fixes_received\": %zu, "
         "\"usbl_fixes_rejected\": %zu, \"relay_lost\": %zu, \"sim_time_s\": %s, \"wall_time_s\": %s}\n",
         r.success ? "true" : "false", str(closed_loop::toString(r.outcome)).c_str(), str(r.reason).c_str(),
-        num(r.usv.metrics.rmse).c_str(),
-        num(r.usv.metrics.sd).c_str(), num(r.usv.metrics.mae).c_str(), r.usv.metrics.samples,
+        num(r.usv.metrics.rmse).c_str(), num(r.usv.metrics.sd).c_str(), num(r.usv.metrics.mae).c_str(),
+        r.usv.metrics.samples, num(r.usv.metrics_truth.rmse).c_str(), r.usv.metrics_truth.samples,
         num(r.auv.tracking_truth.rmse).c_str(), num(r.auv.tracking_truth.sd).c_str(),
         num(r.auv.tracking_truth.mae).c_str(), r.auv.tracking_truth.samples, num(r.auv.approach_truth.rmse).c_str(),
         num(r.auv.tracking.rmse).c_str(), num(r.target_error_m).c_str(), num(r.detection_time_s).c_str(),

@@ -11,6 +11,7 @@ const char* toString(Outcome o) {
     case Outcome::kCollision: return "collision";
     case Outcome::kMissedTarget: return "missed_target";
     case Outcome::kWrongTarget: return "wrong_target";
+    case Outcome::kOffStation: return "off_station";
     case Outcome::kSafetyAbort: return "safety_abort";
     case Outcome::kTimeout: return "timeout";
     case Outcome::kStackDied: return "stack_died";
@@ -24,7 +25,9 @@ Outcome classify(const OutcomeFacts& f) {
   // a report where nothing lies, or farther than the tolerance: the USV was sent to the wrong place
   if (f.target_reported && (!f.expect_target || !(f.target_error_m <= f.target_tolerance_m))) return Outcome::kWrongTarget;
   if (f.expect_target && f.auv_no_target) return Outcome::kMissedTarget;
-  if (f.expect_target ? f.held : f.auv_no_target) return Outcome::kSuccess;
+  if (f.expect_target && f.held)
+    return f.final_distance_m <= f.station_tolerance_m ? Outcome::kSuccess : Outcome::kOffStation;
+  if (!f.expect_target && f.auv_no_target) return Outcome::kSuccess;
   return f.safety_stop ? Outcome::kSafetyAbort : Outcome::kTimeout;
 }
 

@@ -18,14 +18,6 @@ int stepsPer(double rate_hz, double dt) { return std::max(1, static_cast<int>(st
 
 namespace {
 
-YAML::Node loadYaml(const std::string& path) {
-  try {
-    return YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("cannot read '" + path + "': " + e.what());
-  }
-}
-
 perception::CloudView viewOf(const sim::PackedCloud& c) {
   using P = sim::PackedCloud;
   perception::CloudView v;
@@ -57,7 +49,7 @@ perception::SonarBeamView viewOf(const sim::SonarBeamReading& b) {
 }
 
 guidance::GuidanceParams readGuidance(const std::string& file) {
-  const YAML::Node y = loadYaml(file);
+  const YAML::Node y = loadYamlFile(file);
   guidance::GuidanceParams g = guidance::GuidanceParams::preset(y["vehicle"] ? y["vehicle"].as<std::string>() : "usv");
   readParamsYaml(y, guidance::GuidanceParams::table(), g, file);
   return g;
@@ -67,7 +59,7 @@ guidance::GuidanceParams readGuidance(const std::string& file) {
 control::ControlLoopParams readControl(const std::vector<std::string>& files) {
   control::ControlLoopParams c;
   for (const std::string& file : files) {
-    const YAML::Node y = loadYaml(file);
+    const YAML::Node y = loadYamlFile(file);
     readParamsYaml(y, control::ControlLoopParams::table(), c, file);
     if (c.vehicle == "usv") readParamsYaml(y, control::UsvControlParams::table(), c.usv, file);
     else if (c.vehicle == "girona500") readParamsYaml(y, control::Girona500ControlParams::table(), c.girona500, file);
@@ -77,7 +69,7 @@ control::ControlLoopParams readControl(const std::vector<std::string>& files) {
 }
 
 safety::SupervisorConfig readSafety(const std::string& file, safety::SupervisorConfig preset) {
-  readParamsYaml(loadYaml(file), safety::SupervisorConfig::table(), preset, file);
+  readParamsYaml(loadYamlFile(file), safety::SupervisorConfig::table(), preset, file);
   return preset;
 }
 
@@ -121,12 +113,12 @@ void StackSupervisor::tick(long step, double t, control::ControlLoop& control) {
 UsvStackConfig loadUsvStack(const std::string& dir) {
   UsvStackConfig c;
   const std::string vehicle = dir + "/usv.yaml";
-  const YAML::Node v = loadYaml(vehicle);
+  const YAML::Node v = loadYamlFile(vehicle);
   readParamsYaml(v, navigation::GpsNavigatorConfig::table(), c.navigation, vehicle);
   readParamsYaml(v, sim::HullFootprint::table(), c.hull, vehicle);
   c.hull.validate();
   const std::string lidar = dir + "/perception/lidar_usv.yaml";
-  const YAML::Node l = loadYaml(lidar);
+  const YAML::Node l = loadYamlFile(lidar);
   readParamsYaml(l, perception::LidarConfig::table(), c.lidar, lidar);
   perception::SensorFrameParams f;
   readParamsYaml(l, perception::SensorFrameParams::table(), f, lidar);
@@ -134,7 +126,7 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
   c.guidance = readGuidance(dir + "/guidance/usv.yaml");
   c.control = readControl({dir + "/control/usv.yaml"});
   const std::string mission = dir + "/mission/usv.yaml";
-  readParamsYaml(loadYaml(mission), mission::UsvMissionParams::table(), c.mission, mission);
+  readParamsYaml(loadYamlFile(mission), mission::UsvMissionParams::table(), c.mission, mission);
   c.safety = readSafety(dir + "/safety/usv.yaml", safety::usvDefaults());  // as the nodelets read it
   c.sim.seed = 1;  // sim_usv.launch's default
   return c;
@@ -288,7 +280,7 @@ AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, co
   AuvStackConfig c;
   c.model = model;
   const std::string sonar = dir + "/perception/sonar_auv.yaml";
-  const YAML::Node s = loadYaml(sonar);
+  const YAML::Node s = loadYamlFile(sonar);
   readParamsYaml(s, perception::SonarConfig::table(), c.sonar, sonar);
   perception::SensorFrameParams f;
   readParamsYaml(s, perception::SensorFrameParams::table(), f, sonar);
@@ -297,11 +289,11 @@ AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, co
   // as guidance_auv.launch with sim:=true: the simulated vehicle's own tuning over the vehicle's
   c.control = readControl({dir + "/control/" + model + ".yaml", dir + "/control/" + model + "_sim.yaml"});
   const std::string mission = dir + "/mission/auv.yaml";
-  const YAML::Node m = loadYaml(mission);
+  const YAML::Node m = loadYamlFile(mission);
   c.mission.coverage = mission::CoverageArea();
   readParamsYaml(m, mission::AuvMissionParams::table(), c.mission, mission);
   // as auv.launch: the scenario's auv/coverage when it has one, else the mission config's
-  const YAML::Node sc = scenario_file.empty() ? YAML::Node() : loadYaml(scenario_file);
+  const YAML::Node sc = scenario_file.empty() ? YAML::Node() : loadYamlFile(scenario_file);
   if (sc && yamlAt(sc, "auv/coverage").IsDefined())
     readParamsYaml(sc, mission::CoverageArea::table(), c.mission.coverage, scenario_file, "auv/coverage/");
   else

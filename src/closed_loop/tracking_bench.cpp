@@ -68,9 +68,9 @@ int main(int argc, char** argv) {
     }
   }
   std::printf(
-      "{\"usv_rmse_m\": %.4f, \"usv_sd_m\": %.4f, \"usv_mae_m\": %.4f, \"usv_rmse_m_no_crab\": %.4f, "
+      "{\"usv_xte_est_rmse_m\": %.4f, \"usv_xte_est_sd_m\": %.4f, \"usv_xte_est_mae_m\": %.4f, \"usv_rmse_m_no_crab\": %.4f, "
       "\"usv_buoy_rmse_m\": %.4f, \"usv_min_clearance_m\": %.3f, \"usv_inside_box_samples\": %zu, "
-      "\"auv_rmse_m\": %.4f, \"auv_sd_m\": %.4f, \"auv_mae_m\": %.4f, \"auv_rmse_m_no_crab\": %.4f, "
+      "\"auv_xte_est_rmse_m\": %.4f, \"auv_xte_est_sd_m\": %.4f, \"auv_xte_est_mae_m\": %.4f, \"auv_rmse_m_no_crab\": %.4f, "
       "\"usv_rmse_m_true_state\": %.4f, \"auv_rmse_m_true_state\": %.4f, \"usv_hold_m\": %.3f, \"usv_hold_from_rest_m\": %.3f, \"usv_short_transit_rmse_m\": %.4f, "
       "\"thesis_usv_rmse_m\": 1.55, \"thesis_auv_rmse_m\": 0.2346, \"wall_time_s\": %.3f}\n",
       usv.metrics.rmse, usv.metrics.sd, usv.metrics.mae, usv_nc.metrics.rmse, buoy.metrics.rmse, buoy.min_clearance,

@@ -1,7 +1,5 @@
 #include "offshore_gnc/closed_loop/usbl_navigation.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <Eigen/Geometry>
 
 #include "offshore_gnc/common/param_yaml.h"
@@ -13,24 +11,14 @@ namespace closed_loop {
 UsblNavigationConfig loadUsblNavigation(const std::string& dir, const std::string& model) {
   UsblNavigationConfig c;
   const std::string usbl = dir + "/usbl/usbl.yaml";  // both the Usbl nodelet and its simulator load it
-  YAML::Node u;
-  try {
-    u = YAML::LoadFile(usbl);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("cannot read '" + usbl + "': " + e.what());
-  }
+  const YAML::Node u = loadYamlFile(usbl);
   readParamsYaml(u, usbl::SessionParams::table(), c.session, usbl);
   readParamsYaml(u, usbl::qualityLimitsTable(), c.limits, usbl);
   readParamsYaml(u, usbl::mountingTable(), c.mount, usbl);
   readParamsYaml(u, usbl::beaconSimTable(), c.beacon, usbl);
   c.beacon.remote_id = static_cast<std::uint8_t>(c.session.remote_id);
   const std::string nav = dir + "/navigation/auv_" + model + ".yaml";
-  YAML::Node n;
-  try {
-    n = YAML::LoadFile(nav);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("cannot read '" + nav + "': " + e.what());
-  }
+  const YAML::Node n = loadYamlFile(nav);
   readParamsYaml(n, navigation::AuvNavigatorConfig::table(), c.filter, nav);
   readParamsYaml(n, navigation::AuvNavigationParams::table(), c.params, nav);
   return c;

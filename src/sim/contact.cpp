@@ -6,7 +6,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 namespace offshore_gnc {
 namespace sim {
@@ -48,17 +50,25 @@ Polygon HullFootprint::placed(const Eigen::Vector2d& ne, double yaw) const {
 }
 
 double hullClearance(const HullFootprint& hull, const Eigen::Vector2d& ne, double yaw, const World& world,
-                     const std::vector<Vessel>& extra) {
+                     const std::vector<Vessel>& extra, std::string* nearest) {
   const BgPolygon h = toBg(hull.placed(ne, yaw));
   double best = std::numeric_limits<double>::infinity();
+  const auto keep = [&](double d, const char* what, const Eigen::Vector2d& at) {
+    if (!(d < best)) return;
+    best = d;
+    if (nearest) {
+      char b[96];
+      std::snprintf(b, sizeof b, "%s at N %.1f E %.1f", what, at.x(), at.y());
+      *nearest = b;
+    }
+  };
   for (const auto& b : world.buoys) {
     const BgPoint c(b.centre.x(), b.centre.y());
-    best = std::min(best, bg::within(c, h) ? -b.radius : bg::distance(c, h) - b.radius);
+    keep(bg::within(c, h) ? -b.radius : bg::distance(c, h) - b.radius, "a buoy", b.centre);
   }
-  const auto polygon = [&](const Polygon& p) { best = std::min(best, bg::distance(toBg(p), h)); };
-  for (const auto& v : world.vessels) polygon(vesselFootprint(v));
-  for (const auto& v : extra) polygon(vesselFootprint(v));
-  for (const auto& s : world.shorelines) polygon(s);
+  for (const auto& v : world.vessels) keep(bg::distance(toBg(vesselFootprint(v)), h), "a vessel", v.centre);
+  for (const auto& v : extra) keep(bg::distance(toBg(vesselFootprint(v)), h), "a vessel", v.centre);
+  for (const auto& s : world.shorelines) keep(bg::distance(toBg(s), h), "the shore", ne);
   return best;
 }
 

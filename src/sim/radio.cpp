@@ -1,7 +1,5 @@
 #include "offshore_gnc/sim/radio.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 
 #include "offshore_gnc/common/param_yaml.h"
@@ -25,13 +23,7 @@ const ParamTable<RadioParams>& RadioParams::table() {
 RadioParams loadRadioParams(const std::string& file) {
   RadioParams p;
   if (file.empty()) return p;
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("cannot read '" + file + "': " + e.what());
-  }
-  readParamsYaml(root, RadioParams::table(), p, file);
+  readParamsYaml(loadYamlFile(file), RadioParams::table(), p, file);
   return p;
 }
 

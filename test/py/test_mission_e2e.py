@@ -47,11 +47,11 @@ def test_default_mission_succeeds(tmp_path):
     assert m["usv_final_phase"] == "ARRIVED" and m["auv_final_phase"] == "TARGET_FOUND"
     assert m["target_error_m"] is not None and m["target_error_m"] < MAX_TARGET_ERROR_M, m
     assert m["min_clearance_m"] is not None and m["min_clearance_m"] > MIN_CLEARANCE_M, m
-    assert m["usv_xte_samples"] > 0 and m["usv_rmse_m"] is not None and m["usv_rmse_m"] < MAX_USV_RMSE_M, m
+    assert m["usv_xte_est_samples"] > 0 and m["usv_xte_est_rmse_m"] is not None and m["usv_xte_est_rmse_m"] < MAX_USV_RMSE_M, m
     # the AUV navigated on USBL fixes (placed by the USV's relayed GPS and heading), fused in AuvNavigation
     assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
     assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < MAX_NAV_RMSE_M, m
-    assert m["auv_rmse_m"] is not None and m["auv_rmse_m"] < MAX_AUV_RMSE_M, m
+    assert m["auv_xte_true_rmse_m"] is not None and m["auv_xte_true_rmse_m"] < MAX_AUV_RMSE_M, m
     # station keeping with the twin-jet DP (docs/mission.md); the lumped model without DP drifted about 50 m waiting
     assert m["usv_wait_drift_m"] is not None and m["usv_wait_drift_m"] < MAX_WAIT_DRIFT_M, m
     assert m["usv_hold_p95_m"] is not None and m["usv_hold_p95_m"] < MAX_HOLD_P95_M, m
@@ -77,7 +77,7 @@ def test_acolor_mission_succeeds_on_usbl_at_another_site(tmp_path):
     assert m["site"]["latitude"] == -42.8821 and m["site"]["longitude"] == 147.3514, m["site"]
     assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
     assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < ACOLOR_MAX_NAV_RMSE_M, m
-    assert m["auv_xte_samples"] > 500 and m["auv_rmse_m"] is not None and m["auv_rmse_m"] < ACOLOR_MAX_AUV_RMSE_M, m
+    assert m["auv_xte_true_samples"] > 500 and m["auv_xte_true_rmse_m"] is not None and m["auv_xte_true_rmse_m"] < ACOLOR_MAX_AUV_RMSE_M, m
     assert m["target_error_m"] is not None and m["target_error_m"] < ACOLOR_MAX_TARGET_ERROR_M, m
     # the aColor's RC channels drove the simulator, not the Girona500's thruster set-points
     import rosbag
@@ -104,7 +104,7 @@ def test_auv_stack_dies_usv_holds_position(tmp_path):
 
     assert m["usv_final_phase"] == "PEER_LOST", m
     assert m["survivor_drift_m"] is not None and m["survivor_drift_m"] < MAX_HOLD_DRIFT_M, m
-    assert m["auv_xte_samples"] + m["auv_approach_samples"] > 0  # the killed recorder's bag was reindexed, not lost
+    assert m["auv_xte_true_samples"] + m["auv_approach_xte_true_samples"] > 0  # the killed recorder's bag was reindexed, not lost
     assert m["target_error_m"] is None
 
 

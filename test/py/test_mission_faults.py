@@ -74,9 +74,11 @@ PLANS = {
 def check_fault(m, name, start, duration):
     rule, action, _, _, (lo, hi) = FAULTS[name]
     f = the_fault(m, name)
-    # the simulator announced it at its simulated times (in the bag)
-    assert f["injected_at_s"] is not None and abs(f["injected_at_s"] - start) < 0.05, f
-    assert f["ended_at_s"] is not None and abs(f["ended_at_s"] - start - duration) < 0.05, f
+    # the simulator announced it at its simulated times (in the bag); the beacon simulator's I/O loop checks its plan
+    # every few wall milliseconds, up to a second of simulated time at the job's speed-up
+    slack = 1.0 if name == "usbl" else 0.05
+    assert f["injected_at_s"] is not None and abs(f["injected_at_s"] - start) < slack, f
+    assert f["ended_at_s"] is not None and abs(f["ended_at_s"] - start - duration) < slack, f
     assert f["rule"] == rule and f["action"] == action, f
     # detection: the timeout, at the supervisor's next update
     delay = f["detected_at_s"] - f["injected_at_s"]

@@ -67,14 +67,14 @@ def test_report_from_bags(tmp_path):
     out = tmp_path / "report"
     m = report.build(usv_bag, None, str(sc), str(out), wall_time_s=12.0)
     assert m["success"] is True
-    assert m["usv_rmse_m"] == pytest.approx(0.5)
-    assert m["usv_mae_m"] == pytest.approx(0.5)
+    assert m["usv_xte_est_rmse_m"] == pytest.approx(0.5)
+    assert m["usv_xte_est_mae_m"] == pytest.approx(0.5)
     # from the hull (config/usv.yaml's outline, 1.3 m to each side of the centreline), not the reference point
     assert m["min_clearance_m"] == pytest.approx(2.5 - 0.5 - 1.3, abs=1e-3)
     assert m["outcome"] == "success"
     assert m["target_error_m"] == pytest.approx(1.0)
     assert m["usv_final_distance_to_target_m"] == pytest.approx(math.hypot(45.0 - 49.0, 3.0 - 0.5))
-    assert m["auv_rmse_m"] is None  # no AUV bag: reported as unknown, not as zero
+    assert m["auv_xte_true_rmse_m"] is None  # no AUV bag: reported as unknown, not as zero
     assert m["sim_time_s"] == pytest.approx(49.0)
     for f in ("metrics.json", "summary.md", "map.png", "cross_track.png"):
         assert (out / f).stat().st_size > 0, f
@@ -116,9 +116,9 @@ def test_auv_tracking_counted_from_the_first_waypoint(tmp_path):
         g = GuidanceStatus(mode=GuidanceStatus.MODE_STATION_KEEPING, active_leg=2, cross_track_error=9.0)
         b.write("/auv/guidance/status", g, rospy.Time(130))  # not following: in neither figure
     m = report.build(None, auv_bag, None, str(tmp_path / "report"))
-    assert m["auv_xte_samples"] == 20 and m["auv_rmse_m"] == pytest.approx(0.2, abs=1e-4)
-    assert m["auv_approach_samples"] == 10 and m["auv_approach_rmse_m"] == pytest.approx(5.0, abs=1e-4)
-    assert m["auv_rmse_estimate_m"] == pytest.approx(0.1, abs=1e-4)
+    assert m["auv_xte_true_samples"] == 20 and m["auv_xte_true_rmse_m"] == pytest.approx(0.2, abs=1e-4)
+    assert m["auv_approach_xte_true_samples"] == 10 and m["auv_approach_xte_true_rmse_m"] == pytest.approx(5.0, abs=1e-4)
+    assert m["auv_xte_est_rmse_m"] == pytest.approx(0.1, abs=1e-4)
 
 
 def test_auv_navigation_error_and_usbl_fixes(tmp_path):

@@ -59,6 +59,15 @@ def start_relay(master, cfg, name="relay", nodelet=False, origin="61.4507,23.727
     return master.run(cmd + ["__name:=" + name], name=name)
 
 
+def target_link(usv, auv, port, key=KEY, auv_origin="61.4507,23.7270"):
+    """The AUV's relay dialling the USV's to send /target (std_msgs/String), with the AUV's own key and site."""
+    start_relay(usv, cfg("usv", [{"name": "auv"}],
+                         [{"topic": "/target", "type": "std_msgs/String", "direction": "in"}], listen_port=port))
+    start_relay(auv, cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
+                         [{"topic": "/target", "type": "std_msgs/String", "direction": "out"}], key=key),
+                origin=auv_origin)
+
+
 def cfg(name, peers, topics, listen_port=0, key=KEY, **extra):
     c = {"name": name, "listen_port": listen_port, "peers": peers, "topics": topics,
          "heartbeat_period": 0.1, "link_timeout": 0.6, "backoff_max": 0.5, "sim": True}
@@ -190,11 +199,7 @@ def test_wrong_key_delivers_nothing_and_counts():
     port = free_port()
     with MasterSet(["usv", "auv"]) as ms:
         usv, auv = ms["usv"], ms["auv"]
-        start_relay(usv, cfg("usv", [{"name": "auv"}],
-                             [{"topic": "/target", "type": "std_msgs/String", "direction": "in"}], listen_port=port))
-        start_relay(auv, cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
-                             [{"topic": "/target", "type": "std_msgs/String", "direction": "out"}],
-                             key="not-the-same-key-at-all"))
+        target_link(usv, auv, port, key="not-the-same-key-at-all")
         auv.publish("/target", "std_msgs/String", {"data": "secret"})
         time.sleep(3.0)
         assert "/target" not in usv.topics()
@@ -210,11 +215,7 @@ def test_vehicles_on_different_site_origins_refuse_each_other_naming_both():
     port = free_port()
     with MasterSet(["usv", "auv"]) as ms:
         usv, auv = ms["usv"], ms["auv"]
-        start_relay(usv, cfg("usv", [{"name": "auv"}],
-                             [{"topic": "/target", "type": "std_msgs/String", "direction": "in"}], listen_port=port))
-        start_relay(auv, cfg("auv", [{"name": "usv", "address": "127.0.0.1:%d" % port}],
-                             [{"topic": "/target", "type": "std_msgs/String", "direction": "out"}]),
-                    origin="-42.8821,147.3514")
+        target_link(usv, auv, port, auv_origin="-42.8821,147.3514")
         auv.publish("/target", "std_msgs/String", {"data": "a target in the wrong frame"})
         for master, other in ((usv, "auv"), (auv, "usv")):
             assert wait_until(lambda: link_status(master).get("refused"), 20), log_text(master, "relay")

@@ -4,7 +4,7 @@
 // relay would, until the USV holds position at the target, the AUV ends its search without one, or the time
 // limit. The same scenario, configuration and seeds as ./scripts/mission, with the figures its report gives
 // (metrics over the same samples: guidance's cross-track error in path following; the AUV's from the first
-// waypoint reached and on the truth, as the report's auv_rmse_m). The AUV navigates as in the ROS mission: on USBL
+// waypoint reached and on the truth, as the report's auv_xte_true_rmse_m). The AUV navigates as in the ROS mission: on USBL
 // fixes placed by the USV's GPS and heading relayed over the radio (closed_loop/usbl_navigation.h); the radio
 // (sim/radio.h, the main job's model and parameters) delays what crosses it and loses best-effort messages.
 #include <Eigen/Core>
@@ -42,13 +42,14 @@ MissionConfig loadMission(const std::string& config_dir, const std::string& scen
 struct VehicleRecord {
   std::vector<Eigen::Vector4d> truth;                 // (t, north, east, down) at 20 Hz, as the bags record it
   std::vector<Eigen::Vector2d> xte;                   // (t, e) of guidance's samples in path following
+  std::vector<Eigen::Vector2d> xte_truth;             // the same samples on the truth (distance from the active leg)
   // The same samples split as the report splits an AUV's (thesis Table 4.4 leaves the approach out): from the
   // first waypoint reached (active leg 2 on) on guidance's estimate and on the truth (the true position's
   // distance from the active leg), and the approach before it on the truth.
   std::vector<Eigen::Vector2d> xte_tracking, xte_tracking_truth, xte_approach_truth;
   std::vector<Eigen::Vector3d> planned;               // the longest path guidance planned
   std::vector<guidance::SbbBox> boxes;                // the last safety boxes
-  guidance::TrackingMetrics metrics;                  // over xte
+  guidance::TrackingMetrics metrics, metrics_truth;   // over xte, xte_truth
   guidance::TrackingMetrics tracking, tracking_truth, approach_truth;  // over the split samples
   std::string final_phase;
 };

@@ -12,6 +12,15 @@
 
 namespace offshore_gnc {
 
+// A parameter file; ConfigError naming it when it cannot be read or is not YAML.
+inline YAML::Node loadYamlFile(const std::string& path) {
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("cannot read '" + path + "': " + e.what());
+  }
+}
+
 // The node at "a/b/c" under root (an undefined node when any part is missing).
 inline YAML::Node yamlAt(const YAML::Node& root, const std::string& path) {
   YAML::Node n = YAML::Clone(root);

@@ -4,6 +4,7 @@
 // discs, vessels as their boxes, the shorelines as polygons), not a reference point against circles. ROS-free.
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 #include "offshore_gnc/common/param_table.h"
@@ -26,9 +27,9 @@ struct HullFootprint {
 
 // Signed clearance [m] between the placed hull and the nearest obstacle of `world` (and `extra` vessels, e.g. a
 // fault's): > 0 the gap, <= 0 contact (0 when the shapes touch or overlap; a buoy's centre inside the hull gives
-// minus its radius). +inf when the world is empty.
+// minus its radius). +inf when the world is empty. `nearest`, when given, names the nearest obstacle and where it is.
 double hullClearance(const HullFootprint& hull, const Eigen::Vector2d& ne, double yaw, const World& world,
-                     const std::vector<Vessel>& extra = {});
+                     const std::vector<Vessel>& extra = {}, std::string* nearest = nullptr);
 
 }  // namespace sim
 }  // namespace offshore_gnc

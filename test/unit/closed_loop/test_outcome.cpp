@@ -14,6 +14,7 @@ OutcomeFacts held(double target_error = 0.3) {
   f.target_reported = true;
   f.target_error_m = target_error;
   f.min_clearance_m = 4.0;
+  f.final_distance_m = 3.2;
   return f;
 }
 }  // namespace
@@ -30,6 +31,10 @@ TEST(Outcome, SuccessNeedsTheHoldNoContactAndTheRightTarget) {
   f = held();
   f.safety_stop = true;  // a supervisor acted on the way but the mission still ended on station: success
   EXPECT_EQ(classify(f), Outcome::kSuccess);
+  f.final_distance_m = 19.8;  // "on station", but where a safety hold left it, 20 m from the target
+  EXPECT_EQ(classify(f), Outcome::kOffStation);
+  f.final_distance_m = std::nan("");  // nothing known of where it ended: not a success
+  EXPECT_EQ(classify(f), Outcome::kOffStation);
 }
 
 TEST(Outcome, FailuresByCause) {

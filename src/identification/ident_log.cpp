@@ -1,5 +1,5 @@
 // Identification logs from CSV files (named columns, missing values allowed).
-#include "offshore_gnc/models/ident_log.h"
+#include "offshore_gnc/identification/ident_log.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "offshore_gnc/geo/geo.h"
 
 namespace offshore_gnc {
-namespace models {
+namespace identification {
 
 const std::vector<std::string> kLogSignals{"north", "east", "down", "yaw_rad", "u", "v", "w", "r_rad_s", "rpm",
                                            "nozzle"};
@@ -25,7 +25,7 @@ bool IdentLog::has(const std::string& signal, std::size_t min_samples) const {
   return count(signal) >= std::max<std::size_t>(1, min_samples);
 }
 
-IdentLog identLogFromCsv(const CsvTable& csv, const std::vector<std::string>& command_names,
+IdentLog identLogFromCsv(const models::CsvTable& csv, const std::vector<std::string>& command_names,
                          const std::string& source) {
   IdentLog log;
   log.source = source;
@@ -88,10 +88,10 @@ IdentLog identLogFromCsv(const CsvTable& csv, const std::vector<std::string>& co
 }
 
 IdentLog readIdentLogCsv(const std::string& path, const std::vector<std::string>& command_names) {
-  CsvOptions opt;
+  models::CsvOptions opt;
   opt.empty_is_nan = true;
-  return identLogFromCsv(readCsvFile(path, opt), command_names, path);
+  return identLogFromCsv(models::readCsvFile(path, opt), command_names, path);
 }
 
-}  // namespace models
+}  // namespace identification
 }  // namespace offshore_gnc

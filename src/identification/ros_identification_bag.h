@@ -2,11 +2,11 @@
 // ROS side of model_fit: a rosbag recorded by our launch files -> the identification's log (models/ident_log.h).
 #include <string>
 
-#include "offshore_gnc/models/ident_log.h"
-#include "offshore_gnc/models/identification.h"
+#include "offshore_gnc/identification/ident_log.h"
+#include "offshore_gnc/identification/identification.h"
 
 namespace offshore_gnc {
-namespace models_ros {
+namespace identification_ros {
 
 struct BagOptions {
   double nozzle_max = 10000.0;   // WaterjetStatus.nozzle_position (-1..1) -> P_nozzle
@@ -17,8 +17,8 @@ struct BagOptions {
 // /usv_heading, /usv/gps/velocity (u, v, rate of turn), /usv/waterjet/status (port jet: rpm, nozzle).
 // Girona500: /auv/thruster_setpoints and /auv/odom. One row per time stamp; the log starts at the first
 // command. Throws ConfigError naming what is missing.
-models::IdentLog readIdentLogBag(const std::string& path, models::FitVehicle v, int thrusters,
+identification::IdentLog readIdentLogBag(const std::string& path, identification::FitVehicle v, int thrusters,
                                  const BagOptions& opt);
 
-}  // namespace models_ros
+}  // namespace identification_ros
 }  // namespace offshore_gnc

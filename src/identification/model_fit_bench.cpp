@@ -7,9 +7,10 @@
 
 #include "ident_plant.h"
 #include "offshore_gnc/models/csv_table.h"
-#include "offshore_gnc/models/ident_log.h"
+#include "offshore_gnc/identification/ident_log.h"
 
 using namespace offshore_gnc::models;
+using namespace offshore_gnc::identification;
 
 
 extern "C" {

@@ -1,5 +1,5 @@
 // Model identification by multiple shooting with Ceres (see identification.h and docs/model-identification.md).
-#include "offshore_gnc/models/identification.h"
+#include "offshore_gnc/identification/identification.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +18,7 @@
 #include "offshore_gnc/common/validate.h"
 
 namespace offshore_gnc {
-namespace models {
+namespace identification {
 
 using ident::Plant;
 
@@ -209,7 +209,7 @@ struct Item {
 
 struct StageProblem {
   const IdentLog* log = nullptr;
-  const Environment* env = nullptr;
+  const models::Environment* env = nullptr;
   double dt = 0.02;
   const Plant* base = nullptr;     // current values of everything not in `keys`
   std::vector<std::string> keys;   // continuous parameters of the global block
@@ -949,7 +949,7 @@ class Fit {
   std::unique_ptr<Plant> plant_, start_;
   const IdentLog& log_;
   FitOptions opt_;
-  Environment env_;
+  models::Environment env_;
   std::vector<Piece> pieces_;
   std::map<std::string, double> noise_, fit_noise_, spread_;
   std::map<std::string, std::vector<double>> seg_;
@@ -1024,5 +1024,5 @@ FitReport fitModel(FitVehicle v, const std::string& text, const std::string& sou
   return f.run();
 }
 
-}  // namespace models
+}  // namespace identification
 }  // namespace offshore_gnc

@@ -8,10 +8,10 @@
 
 #include "ident_plant.h"
 #include "offshore_gnc/common/validate.h"
-#include "offshore_gnc/models/identification.h"
+#include "offshore_gnc/identification/identification.h"
 
 namespace offshore_gnc {
-namespace models {
+namespace identification {
 
 namespace {
 
@@ -103,5 +103,5 @@ std::string fittedParamsYaml(FitVehicle v, const std::string& start_text, const 
   return out;
 }
 
-}  // namespace models
+}  // namespace identification
 }  // namespace offshore_gnc

@@ -7,11 +7,11 @@
 #include <vector>
 
 #include "offshore_gnc/models/environment.h"
-#include "offshore_gnc/models/ident_log.h"
-#include "offshore_gnc/models/identification.h"
+#include "offshore_gnc/identification/ident_log.h"
+#include "offshore_gnc/identification/identification.h"
 
 namespace offshore_gnc {
-namespace models {
+namespace identification {
 namespace ident {
 
 class Plant {
@@ -30,11 +30,11 @@ class Plant {
   // (zero-order hold, steps <= dt), at row `begin` the free state is set to x0 (when given), and the outputs of
   // rows [begin, end) are written to out (row-major, outputs().size() per row). False when the parameters are
   // refused by the model or the run is not finite.
-  virtual bool simulate(const IdentLog& log, const Environment& env, double dt, std::size_t warm,
+  virtual bool simulate(const IdentLog& log, const models::Environment& env, double dt, std::size_t warm,
                         std::size_t begin, std::size_t end, const double* x0, double* out) const = 0;
   // Per group: the force or set-point the logged commands give, per row of [begin, end) (what excites it).
   // A group not in the map has no force of its own (USV sway): its motion decides.
-  virtual std::map<std::string, std::vector<double>> excitation(const IdentLog& log, const Environment& env,
+  virtual std::map<std::string, std::vector<double>> excitation(const IdentLog& log, const models::Environment& env,
                                                                 double dt, std::size_t begin,
                                                                 std::size_t end) const = 0;
   // Checks the values by the model's own validation (ConfigError).
@@ -69,5 +69,5 @@ bool isAngle(const std::string& signal);  // yaw_rad: differences are wrapped
 std::string groupSignal(const std::string& group);  // surge -> u, yaw -> r_rad_s, rpm -> rpm, ...
 
 }  // namespace ident
-}  // namespace models
+}  // namespace identification
 }  // namespace offshore_gnc

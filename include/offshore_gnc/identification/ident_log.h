@@ -10,7 +10,7 @@
 #include "offshore_gnc/models/csv_table.h"
 
 namespace offshore_gnc {
-namespace models {
+namespace identification {
 
 // The measured signals the identification knows (column names of the CSV): NED position [m], yaw [rad]
 // (clockwise from north), body velocities over ground [m/s], yaw rate [rad/s], USV engine rpm and nozzle
@@ -34,9 +34,9 @@ struct IdentLog {
 // listed in notes). `lat_deg,lon_deg` instead of north/east are converted to a local NED frame at the first
 // fix (the fit needs relative motion only). Empty cells and "nan" are missing values. Throws ConfigError when
 // the header, `t` or a command column is missing, or nothing measured is in it.
-IdentLog identLogFromCsv(const CsvTable& csv, const std::vector<std::string>& command_names,
+IdentLog identLogFromCsv(const models::CsvTable& csv, const std::vector<std::string>& command_names,
                          const std::string& source);
 IdentLog readIdentLogCsv(const std::string& path, const std::vector<std::string>& command_names);
 
-}  // namespace models
+}  // namespace identification
 }  // namespace offshore_gnc

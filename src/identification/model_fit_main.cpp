@@ -18,12 +18,13 @@
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/models/cli.h"
 #include "offshore_gnc/models/csv_table.h"
-#include "offshore_gnc/models/identification.h"
+#include "offshore_gnc/identification/identification.h"
 #include "offshore_gnc/models/params_yaml.h"
-#include "ros_models_bag.h"
+#include "ros_identification_bag.h"
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::models;
+using namespace offshore_gnc::identification;
 
 namespace {
 
@@ -184,9 +185,9 @@ int main(int argc, char** argv) {
     const auto columns = fitCommandColumns(v, text, params);
     IdentLog log;
     if (endsWith(input, ".bag")) {
-      models_ros::BagOptions bo;
-      if (v == FitVehicle::Usv) bo.nozzle_max = usvParamsFromYaml(text, params).nozzle_max;
-      log = models_ros::readIdentLogBag(input, v, static_cast<int>(columns.size()), bo);
+      identification_ros::BagOptions bo;
+      if (v == FitVehicle::Usv) bo.nozzle_max = models::usvParamsFromYaml(text, params).nozzle_max;
+      log = identification_ros::readIdentLogBag(input, v, static_cast<int>(columns.size()), bo);
     } else {
       log = readIdentLogCsv(input, columns);
     }

@@ -3,7 +3,7 @@ fit is not told (30 % off the config's). The logs come from the simulators' own 
 the GPS-compass noise model of src/sim/sensors.cpp) and, for the rosbag path, launch/usv.launch recording a run
 driven in lockstep. Bad logs (gaps, NaN rows, constant commands) must give a clear message, never a wrong number.
 
-Run as a script (`python3 test_models_identification.py drive CMD.csv`) the file is also the node that drives the
+Run as a script (`python3 test_identification_fit.py drive CMD.csv`) the file is also the node that drives the
 simulator in lockstep with the manoeuvre's joystick commands.
 """
 import csv

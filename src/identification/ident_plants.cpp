@@ -1,5 +1,5 @@
 // The vehicles as the identification sees them: their fittable coefficients (one table per model type) and
-// their simulation, which is always the models module's UsvModel / AuvModel.
+// their simulation, which is always the models module's models::UsvModel / models::AuvModel.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,7 +11,7 @@
 #include "offshore_gnc/models/usv.h"
 
 namespace offshore_gnc {
-namespace models {
+namespace identification {
 namespace ident {
 
 bool isAngle(const std::string& signal) { return signal == "yaw_rad"; }
@@ -81,7 +81,7 @@ void applyState(VehicleState& s, const std::vector<std::string>& names, const do
 
 // Advances a model over one row interval with the command held: equal steps no longer than dt.
 template <class M>
-void advance(M& m, double span, double dt, const Environment& env) {
+void advance(M& m, double span, double dt, const models::Environment& env) {
   if (!(span > 0.0)) return;
   const int n = std::max(1, static_cast<int>(std::ceil(span / dt - 1e-9)));
   for (int k = 0; k < n; ++k) m.step(span / n, env);
@@ -94,23 +94,23 @@ bool allFinite(const double* v, std::size_t n) {
 }
 
 // ---------------------------------------------------------------- USV (both model types)
-const Fields<UsvParams>& usvFields() {
-  static const Fields<UsvParams> f{
-      {{"X_u", &UsvParams::X_u},         {"X_uu", &UsvParams::X_uu},       {"X_udot", &UsvParams::X_udot},
-       {"N_r", &UsvParams::N_r},         {"N_rr", &UsvParams::N_rr},       {"N_rdot", &UsvParams::N_rdot},
-       {"Y_v", &UsvParams::Y_v},         {"Y_vv", &UsvParams::Y_vv},       {"Y_vdot", &UsvParams::Y_vdot},
-       {"nozzle_delay", &UsvParams::nozzle_delay},
-       {"nozzle_time_constant", &UsvParams::nozzle_time_constant},
-       {"surge_kp", &UsvParams::surge_kp}, {"surge_tz", &UsvParams::surge_tz},
-       {"surge_tp1", &UsvParams::surge_tp1}, {"surge_tp2", &UsvParams::surge_tp2},
-       {"surge_td", &UsvParams::surge_td}, {"yaw_kp", &UsvParams::yaw_kp},   {"yaw_tz", &UsvParams::yaw_tz},
-       {"yaw_tp1", &UsvParams::yaw_tp1},   {"yaw_tp2", &UsvParams::yaw_tp2}},
-      {{"rpm_num", &UsvParams::rpm_num}, {"rpm_den", &UsvParams::rpm_den}}};
+const Fields<models::UsvParams>& usvFields() {
+  static const Fields<models::UsvParams> f{
+      {{"X_u", &models::UsvParams::X_u},         {"X_uu", &models::UsvParams::X_uu},       {"X_udot", &models::UsvParams::X_udot},
+       {"N_r", &models::UsvParams::N_r},         {"N_rr", &models::UsvParams::N_rr},       {"N_rdot", &models::UsvParams::N_rdot},
+       {"Y_v", &models::UsvParams::Y_v},         {"Y_vv", &models::UsvParams::Y_vv},       {"Y_vdot", &models::UsvParams::Y_vdot},
+       {"nozzle_delay", &models::UsvParams::nozzle_delay},
+       {"nozzle_time_constant", &models::UsvParams::nozzle_time_constant},
+       {"surge_kp", &models::UsvParams::surge_kp}, {"surge_tz", &models::UsvParams::surge_tz},
+       {"surge_tp1", &models::UsvParams::surge_tp1}, {"surge_tp2", &models::UsvParams::surge_tp2},
+       {"surge_td", &models::UsvParams::surge_td}, {"yaw_kp", &models::UsvParams::yaw_kp},   {"yaw_tz", &models::UsvParams::yaw_tz},
+       {"yaw_tp1", &models::UsvParams::yaw_tp1},   {"yaw_tp2", &models::UsvParams::yaw_tp2}},
+      {{"rpm_num", &models::UsvParams::rpm_num}, {"rpm_den", &models::UsvParams::rpm_den}}};
   return f;
 }
 
 // Rows of the USV's parameter tables: key, group, stage, magnitude, delay, nominal, lower bound.
-std::vector<FitParameter> usvParameters(const UsvParams& p) {
+std::vector<FitParameter> usvParameters(const models::UsvParams& p) {
   std::vector<FitParameter> v;
   // eq. 3.24: engine rpm / set-point, second order (the leading denominator coefficient stays as given)
   for (std::size_t i = 0; i < p.rpm_num.size(); ++i)
@@ -120,7 +120,7 @@ std::vector<FitParameter> usvParameters(const UsvParams& p) {
   // eq. 3.25: nozzle delay + first-order lag
   v.push_back({"nozzle_delay", "nozzle", "nozzle", false, true, 0.25, 0.0});
   v.push_back({"nozzle_time_constant", "nozzle", "nozzle", false, false, 0.1, 1e-3});
-  if (p.type == UsvModelType::Dynamic3Dof) {  // Table 3.4 (+ the sway terms the thesis left open)
+  if (p.type == models::UsvModelType::Dynamic3Dof) {  // Table 3.4 (+ the sway terms the thesis left open)
     for (const char* k : {"X_u", "X_uu", "X_udot"}) v.push_back({k, "surge", "hull", true, false, 100.0, 0.0});
     for (const char* k : {"Y_v", "Y_vv", "Y_vdot"}) v.push_back({k, "sway", "hull", true, false, 100.0, 0.0});
     for (const char* k : {"N_r", "N_rr", "N_rdot"}) v.push_back({k, "yaw", "hull", true, false, 100.0, 0.0});
@@ -140,15 +140,15 @@ std::vector<FitParameter> usvParameters(const UsvParams& p) {
 
 class UsvPlant : public Plant {
  public:
-  explicit UsvPlant(const UsvParams& p) : p_(p), params_(usvParameters(p)) {
-    free_ = p_.type == UsvModelType::Dynamic3Dof
+  explicit UsvPlant(const models::UsvParams& p) : p_(p), params_(usvParameters(p)) {
+    free_ = p_.type == models::UsvModelType::Dynamic3Dof
                 ? std::vector<std::string>{"north", "east", "yaw_rad", "u", "v", "r_rad_s"}
                 : std::vector<std::string>{"north", "east", "yaw_rad"};
   }
   std::unique_ptr<Plant> clone() const override { return std::make_unique<UsvPlant>(*this); }
-  std::string model() const override { return p_.type == UsvModelType::Nomoto ? "nomoto" : "dynamic_3dof"; }
+  std::string model() const override { return p_.type == models::UsvModelType::Nomoto ? "nomoto" : "dynamic_3dof"; }
   const std::vector<FitParameter>& parameters() const override { return params_; }
-  double get(const std::string& key) const override { return usvFields().ref(const_cast<UsvParams&>(p_), key); }
+  double get(const std::string& key) const override { return usvFields().ref(const_cast<models::UsvParams&>(p_), key); }
   void set(const std::string& key, double v) override { usvFields().ref(p_, key) = v; }
   const std::vector<std::string>& commands() const override {
     static const std::vector<std::string> c{"surge", "sway", "yaw"};
@@ -162,11 +162,11 @@ class UsvPlant : public Plant {
   double warmup(const FitOptions& opt) const override { return opt.warmup; }
   void validate() const override { p_.validate(); }
 
-  bool simulate(const IdentLog& log, const Environment& env, double dt, std::size_t warm, std::size_t begin,
+  bool simulate(const IdentLog& log, const models::Environment& env, double dt, std::size_t warm, std::size_t begin,
                 std::size_t end, const double* x0, double* out) const override {
-    std::unique_ptr<UsvModel> m;
+    std::unique_ptr<models::UsvModel> m;
     try {
-      m = std::make_unique<UsvModel>(p_);
+      m = std::make_unique<models::UsvModel>(p_);
     } catch (const ConfigError&) {
       return false;  // e.g. a trial step made a coefficient invalid: the optimiser tries a smaller step
     }
@@ -180,7 +180,7 @@ class UsvPlant : public Plant {
       }
       if (i >= begin) {
         const VehicleState& s = m->state();
-        const JetState j = m->jet(0);
+        const models::JetState j = m->jet(0);
         const double row[8] = {s.position.x(), s.position.y(), s.yaw, s.velocity.x(), s.velocity.y(),
                                s.angular_rate.z(), j.rpm, j.nozzle};
         std::copy(row, row + 8, o);
@@ -195,10 +195,10 @@ class UsvPlant : public Plant {
     return m->counters().get("non_finite_state") == 0 && allFinite(out, (end - begin) * 8);
   }
 
-  std::map<std::string, std::vector<double>> excitation(const IdentLog& log, const Environment& env, double dt,
+  std::map<std::string, std::vector<double>> excitation(const IdentLog& log, const models::Environment& env, double dt,
                                                         std::size_t begin, std::size_t end) const override {
     std::map<std::string, std::vector<double>> x;
-    UsvModel m(p_);
+    models::UsvModel m(p_);
     m.reset(measuredState(log, begin));
     for (std::size_t i = begin; i < end; ++i) {
       const auto c = log.commands.row(static_cast<Eigen::Index>(i));
@@ -206,7 +206,7 @@ class UsvPlant : public Plant {
       x["rpm"].push_back(m.rpmSetpoint(c(0)));
       x["nozzle"].push_back(m.nozzleSetpoint(c(2)));
       if (i + 1 < end) advance(m, log.t[i + 1] - log.t[i], dt, env);
-      if (p_.type == UsvModelType::Dynamic3Dof) {
+      if (p_.type == models::UsvModelType::Dynamic3Dof) {
         x["surge"].push_back(m.tau()(0));
         x["yaw"].push_back(m.tau()(2));
       } else {  // the identified transfer functions' inputs: bucket-signed rpm, nozzle position
@@ -218,26 +218,26 @@ class UsvPlant : public Plant {
   }
 
  private:
-  UsvParams p_;
+  models::UsvParams p_;
   std::vector<FitParameter> params_;
   std::vector<std::string> free_;
 };
 
 // ---------------------------------------------------------------- AUV (Girona500, aColor)
-const Fields<AuvParams>& auvFields() {
-  static const Fields<AuvParams> f{{{"X_u", &AuvParams::X_u},       {"X_uu", &AuvParams::X_uu},
-                                    {"X_udot", &AuvParams::X_udot}, {"Y_v", &AuvParams::Y_v},
-                                    {"Y_vv", &AuvParams::Y_vv},     {"Y_vdot", &AuvParams::Y_vdot},
-                                    {"Z_w", &AuvParams::Z_w},       {"Z_ww", &AuvParams::Z_ww},
-                                    {"Z_wdot", &AuvParams::Z_wdot}, {"N_r", &AuvParams::N_r},
-                                    {"N_rr", &AuvParams::N_rr},     {"N_rdot", &AuvParams::N_rdot}},
+const Fields<models::AuvParams>& auvFields() {
+  static const Fields<models::AuvParams> f{{{"X_u", &models::AuvParams::X_u},       {"X_uu", &models::AuvParams::X_uu},
+                                    {"X_udot", &models::AuvParams::X_udot}, {"Y_v", &models::AuvParams::Y_v},
+                                    {"Y_vv", &models::AuvParams::Y_vv},     {"Y_vdot", &models::AuvParams::Y_vdot},
+                                    {"Z_w", &models::AuvParams::Z_w},       {"Z_ww", &models::AuvParams::Z_ww},
+                                    {"Z_wdot", &models::AuvParams::Z_wdot}, {"N_r", &models::AuvParams::N_r},
+                                    {"N_rr", &models::AuvParams::N_rr},     {"N_rdot", &models::AuvParams::N_rdot}},
                                    {}};
   return f;
 }
 
 class AuvPlant : public Plant {
  public:
-  explicit AuvPlant(const AuvParams& p) : p_(p) {
+  explicit AuvPlant(const models::AuvParams& p) : p_(p) {
     const std::pair<const char*, const char*> axes[4] = {{"X", "surge"}, {"Y", "sway"}, {"Z", "heave"}, {"N", "yaw"}};
     const char* vel[4] = {"u", "v", "w", "r"};
     for (int a = 0; a < 4; ++a) {  // Table 3.4: linear, quadratic damping and added mass per axis
@@ -250,7 +250,7 @@ class AuvPlant : public Plant {
   std::unique_ptr<Plant> clone() const override { return std::make_unique<AuvPlant>(*this); }
   std::string model() const override { return "auv_4dof"; }
   const std::vector<FitParameter>& parameters() const override { return params_; }
-  double get(const std::string& key) const override { return auvFields().ref(const_cast<AuvParams&>(p_), key); }
+  double get(const std::string& key) const override { return auvFields().ref(const_cast<models::AuvParams&>(p_), key); }
   void set(const std::string& key, double v) override { auvFields().ref(p_, key) = v; }
   const std::vector<std::string>& commands() const override { return commands_; }
   const std::vector<std::string>& outputs() const override {
@@ -261,11 +261,11 @@ class AuvPlant : public Plant {
   double warmup(const FitOptions&) const override { return 0.0; }  // thrusters act at once (static curves)
   void validate() const override { p_.validate(); }
 
-  bool simulate(const IdentLog& log, const Environment& env, double dt, std::size_t warm, std::size_t begin,
+  bool simulate(const IdentLog& log, const models::Environment& env, double dt, std::size_t warm, std::size_t begin,
                 std::size_t end, const double* x0, double* out) const override {
-    std::unique_ptr<AuvModel> m;
+    std::unique_ptr<models::AuvModel> m;
     try {
-      m = std::make_unique<AuvModel>(p_);
+      m = std::make_unique<models::AuvModel>(p_);
     } catch (const ConfigError&) {
       return false;
     }
@@ -293,9 +293,9 @@ class AuvPlant : public Plant {
     return allFinite(out, (end - begin) * 8);
   }
 
-  std::map<std::string, std::vector<double>> excitation(const IdentLog& log, const Environment&, double,
+  std::map<std::string, std::vector<double>> excitation(const IdentLog& log, const models::Environment&, double,
                                                         std::size_t begin, std::size_t end) const override {
-    const AuvModel m(p_);
+    const models::AuvModel m(p_);
     std::map<std::string, std::vector<double>> x;
     const char* groups[4] = {"surge", "sway", "heave", "yaw"};
     Eigen::VectorXd f(m.thrusters());
@@ -308,7 +308,7 @@ class AuvPlant : public Plant {
   }
 
  private:
-  AuvParams p_;
+  models::AuvParams p_;
   std::vector<FitParameter> params_;
   std::vector<std::string> commands_;
 };
@@ -316,9 +316,9 @@ class AuvPlant : public Plant {
 }  // namespace
 
 std::unique_ptr<Plant> makePlant(FitVehicle v, const std::string& yaml_text, const std::string& source) {
-  if (v == FitVehicle::Usv) return std::make_unique<UsvPlant>(usvParamsFromYaml(yaml_text, source));
-  const AuvParams p = auvParamsFromYaml(yaml_text, source);
-  const bool acolor = p.type == AuvType::AColor;
+  if (v == FitVehicle::Usv) return std::make_unique<UsvPlant>(models::usvParamsFromYaml(yaml_text, source));
+  const models::AuvParams p = models::auvParamsFromYaml(yaml_text, source);
+  const bool acolor = p.type == models::AuvType::AColor;
   if (acolor != (v == FitVehicle::AColor))
     throw ConfigError(source + ": the file is for the " + (acolor ? "acolor" : "girona500") +
                       ", not the vehicle asked for (" + fitVehicleName(v) + ")");
@@ -326,5 +326,5 @@ std::unique_ptr<Plant> makePlant(FitVehicle v, const std::string& yaml_text, con
 }
 
 }  // namespace ident
-}  // namespace models
+}  // namespace identification
 }  // namespace offshore_gnc

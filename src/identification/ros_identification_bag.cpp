@@ -1,5 +1,5 @@
 // Rosbag -> identification log: each topic's samples on one time axis (header stamps), commands held.
-#include "ros_models_bag.h"
+#include "ros_identification_bag.h"
 
 #include <geometry_msgs/QuaternionStamped.h>
 #include <geometry_msgs/TwistStamped.h>
@@ -20,7 +20,7 @@
 #include "offshore_gnc/geo/geo.h"
 
 namespace offshore_gnc {
-namespace models_ros {
+namespace identification_ros {
 
 namespace {
 
@@ -45,10 +45,10 @@ std::vector<std::pair<double, typename Msg::ConstPtr>> read(rosbag::Bag& bag, co
 }
 
 // The rows: union of all stamps (ns resolution), values per row; commands held from their own stamps.
-models::IdentLog assemble(const std::string& path, const std::vector<std::string>& cmd_names,
+identification::IdentLog assemble(const std::string& path, const std::vector<std::string>& cmd_names,
                           const std::vector<std::pair<double, std::vector<double>>>& commands,
                           std::map<std::int64_t, Sample>& rows) {
-  models::IdentLog log;
+  identification::IdentLog log;
   log.source = path;
   log.command_names = cmd_names;
   if (commands.empty()) throw ConfigError(path + ": the bag has no command messages");
@@ -84,7 +84,7 @@ models::IdentLog assemble(const std::string& path, const std::vector<std::string
 
 }  // namespace
 
-models::IdentLog readIdentLogBag(const std::string& path, models::FitVehicle v, int thrusters, const BagOptions& opt) {
+identification::IdentLog readIdentLogBag(const std::string& path, identification::FitVehicle v, int thrusters, const BagOptions& opt) {
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);
@@ -95,7 +95,7 @@ models::IdentLog readIdentLogBag(const std::string& path, models::FitVehicle v, 
   auto put = [&](double t, const std::string& s, double value) { rows[std::llround(t * 1e9)].values[s] = value; };
   std::vector<std::pair<double, std::vector<double>>> commands;
 
-  if (v == models::FitVehicle::Usv) {
+  if (v == identification::FitVehicle::Usv) {
     // Commands as the simulator applies them: the CAN chain's applied command if recorded, else manual
     // (while fresh) over autonomy.
     auto applied = read<JoystickCommand>(bag, "/usv/waterjet/applied_cmd");
@@ -148,7 +148,7 @@ models::IdentLog readIdentLogBag(const std::string& path, models::FitVehicle v, 
     }
     return assemble(path, {"surge", "sway", "yaw"}, commands, rows);
   }
-  if (v == models::FitVehicle::AColor)
+  if (v == identification::FitVehicle::AColor)
     throw ConfigError(path + ": aColor bags carry RC channels (/auv/rc_channels), which the flight controller "
                              "mixes; convert them to per-thruster commands in a CSV (docs/model-identification.md)");
   for (const auto& s : read<ThrusterSetpoints>(bag, "/auv/thruster_setpoints")) {
@@ -172,5 +172,5 @@ models::IdentLog readIdentLogBag(const std::string& path, models::FitVehicle v, 
   return assemble(path, names, commands, rows);
 }
 
-}  // namespace models_ros
+}  // namespace identification_ros
 }  // namespace offshore_gnc

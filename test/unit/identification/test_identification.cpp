@@ -1,4 +1,4 @@
-// Model identification core: CSV logs, the NRMSE fit measure, UsvModel::setState, a noise-free fit of a log the
+// Model identification core: CSV logs, the NRMSE fit measure, models::UsvModel::setState, a noise-free fit of a log the
 // model itself made (30 % off coefficients recovered), the fitted YAML file, and logs that cannot identify.
 #include <gtest/gtest.h>
 
@@ -9,13 +9,14 @@
 
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/models/csv_table.h"
-#include "offshore_gnc/models/ident_log.h"
-#include "offshore_gnc/models/identification.h"
+#include "offshore_gnc/identification/ident_log.h"
+#include "offshore_gnc/identification/identification.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/models/usv.h"
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::models;
+using namespace offshore_gnc::identification;
 
 namespace {
 
@@ -27,10 +28,10 @@ std::string fileText(const std::string& path) {
 }
 
 // A log made by the model itself (noise-free): commands every 0.1 s, the state sampled at each row.
-IdentLog modelLog(const UsvParams& p, const std::function<UsvCommand(double)>& cmd, double seconds) {
-  UsvModel m(p);
+IdentLog modelLog(const models::UsvParams& p, const std::function<UsvCommand(double)>& cmd, double seconds) {
+  models::UsvModel m(p);
   m.reset(VehicleState());
-  const Environment env;
+  const models::Environment env;
   IdentLog log;
   log.source = "model";
   log.command_names = {"surge", "sway", "yaw"};
@@ -70,9 +71,9 @@ std::string startText() { return fileText("config/models/usv.yaml"); }
 
 TEST(CsvTable, HeaderEmptyCellsAndErrorsWithLineNumbers) {
   std::istringstream in("# comment\nt,a,b\n0,1,\n\n0.5,nan,2\n");
-  CsvOptions opt;
+  models::CsvOptions opt;
   opt.empty_is_nan = true;
-  const CsvTable t = readCsvTable(in, "x.csv", opt);
+  const models::CsvTable t = readCsvTable(in, "x.csv", opt);
   ASSERT_EQ(t.rows.size(), 2u);
   EXPECT_EQ(t.column("b"), 2);
   EXPECT_TRUE(std::isnan(t.rows[0][2]));
@@ -91,7 +92,7 @@ TEST(CsvTable, HeaderEmptyCellsAndErrorsWithLineNumbers) {
 
 TEST(IdentLog, NamedColumnsLatLonAndMissingCommands) {
   std::istringstream in("t,surge,sway,yaw,lat_deg,lon_deg,extra\n0,0.5,0,0,61.45,23.727,1\n1,0.5,0,0,61.45001,23.727,2\n");
-  CsvOptions opt;
+  models::CsvOptions opt;
   opt.empty_is_nan = true;
   const IdentLog log = identLogFromCsv(readCsvTable(in, "l.csv", opt), {"surge", "sway", "yaw"}, "l.csv");
   ASSERT_TRUE(log.has("north"));
@@ -115,12 +116,12 @@ TEST(NrmseFit, PerfectMeanAndNaN) {
 }
 
 TEST(UsvModel, SetStateKeepsTheWaterjetChain) {
-  UsvModel m(loadUsvParams("config/models/usv.yaml"));
-  const Environment env;
+  models::UsvModel m(loadUsvParams("config/models/usv.yaml"));
+  const models::Environment env;
   m.reset(VehicleState());
   m.setCommand({1.0, 0.0, 0.5});
   for (int i = 0; i < 2000; ++i) m.step(0.01, env);
-  const JetState before = m.jet(0);
+  const models::JetState before = m.jet(0);
   VehicleState s;
   s.position = {10, 20, 0};
   s.yaw = 1.0;
@@ -137,7 +138,7 @@ TEST(UsvModel, SetStateKeepsTheWaterjetChain) {
 }
 
 TEST(Identification, RecoversCoefficientsFromANoiseFreeModelLog) {
-  UsvParams truth = loadUsvParams("config/models/usv.yaml");
+  models::UsvParams truth = loadUsvParams("config/models/usv.yaml");
   truth.X_uu *= 1.3;
   truth.N_r *= 0.7;
   truth.N_rr *= 1.3;
@@ -165,7 +166,7 @@ TEST(Identification, RecoversCoefficientsFromANoiseFreeModelLog) {
   EXPECT_NE(out.find("# Table 3.3"), std::string::npos);
   EXPECT_NE(out.find("X_uu: "), std::string::npos);
   EXPECT_NE(out.find("# fitted: standard error"), std::string::npos);
-  const UsvParams back = usvParamsFromYaml(out, "fitted");
+  const models::UsvParams back = models::usvParamsFromYaml(out, "fitted");
   EXPECT_NEAR(back.X_uu, value("X_uu"), 1e-3 * back.X_uu);
   // The twin jets' nozzles push the stern sideways (the lumped jets did not), so sway is excited and Y_vv found.
   EXPECT_NEAR(std::abs(back.Y_vv), 3000.0, 0.02 * 3000.0);

@@ -1,7 +1,7 @@
 #pragma once
 // Model identification from logs (thesis chapter 3: the transfer functions of eq. 3.24/3.25 and Table 3.2, the
 // hydrodynamic coefficients of Table 3.4), ROS-free. The simulated response always comes from the models
-// module's own UsvModel / AuvModel, the code the simulators run; Ceres' Levenberg-Marquardt fits it to the log
+// module's own models::UsvModel / models::AuvModel, the code the simulators run; Ceres' Levenberg-Marquardt fits it to the log
 // by multiple shooting (docs/model-identification.md argues the choice):
 //   - the log is cut into pieces at gaps and unknown (NaN) commands;
 //   - actuator stages (USV engine rpm, nozzle) are fitted on whole pieces from their own logged signal;
@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "offshore_gnc/models/environment.h"
-#include "offshore_gnc/models/ident_log.h"
+#include "offshore_gnc/identification/ident_log.h"
 
 namespace offshore_gnc {
-namespace models {
+namespace identification {
 
 enum class FitVehicle { Usv, Girona500, AColor };
 FitVehicle fitVehicleFromName(const std::string& name);  // "usv", "girona500", "acolor"; ConfigError otherwise
@@ -39,7 +39,7 @@ struct FitParameter {
 };
 
 struct FitOptions {
-  EnvironmentParams environment;  // water and air during the log (calm by default)
+  models::EnvironmentParams environment;  // water and air during the log (calm by default)
   double dt = 0.01;               // simulation step [s] (the simulators' step; delays resolve to it)
   double segment = 30.0;          // multiple-shooting segment length [s]
   double warmup = 10.0;           // actuator warm-up before a segment / skipped at a piece's start [s]
@@ -112,5 +112,5 @@ std::string fittedParamsYaml(FitVehicle v, const std::string& start_text, const 
 // 3.8-3.12, MATLAB's compare). NaN when fewer than 2 samples or y is constant.
 double nrmseFit(const std::vector<double>& measured, const std::vector<double>& simulated);
 
-}  // namespace models
+}  // namespace identification
 }  // namespace offshore_gnc
