@@ -18,6 +18,11 @@ simulator's INS-like estimate. With usbl the job is the simulated acoustic chann
 AUV master needs the USV's true pose, so the USV's monitor echoes /usv/ground_truth/odom (10 Hz of simulated time)
 and the job hands each line to the AUV's monitor, which republishes it there with its header stamp (both masters
 run on the one lockstep clock). Simulation only: on the vehicles the acoustic link itself carries the signal.
+
+The relays talk through the simulated radio (python/offshore_gnc/radio.py: latency, rate and losses of a WiFi link
+over water, config/relay/radio.yaml or --radio FILE), which the `link` fault takes down. --seed S draws every
+simulated sensor's noise and field effects, and the radio's, anew (S = 1: the launch files' seeds, as
+mission_rosfree --seed).
 """
 import argparse
 import datetime
@@ -32,7 +37,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 from offshore_gnc import report, scenario_check  # noqa: E402
-from offshore_gnc.radio import Radio  # noqa: E402
+from offshore_gnc import radio as radio_link  # noqa: E402
 from offshore_gnc.testing import MasterSet  # noqa: E402
 from offshore_gnc.testing.masters import free_port, kill_tree  # noqa: E402
 
@@ -42,30 +47,33 @@ REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 PHANTOM_TARGET_NED = (5000.0, 0.0, 5.0)
 
 
-def relay_configs(folder, speedup, dial_port=None):
+def relay_configs(folder, speedup):
     """config/relay/{usv,auv}.yaml with the link on a free port instead of the fixed 11411 (two missions on one
     machine would otherwise share a link, both holding the same simulation key), and each topic's rate limit
     (the relay counts in wall seconds) times the simulation's speed-up, so that /usv_gps still reaches the AUV
-    at its rate in simulated time (0: as fast as possible, unlimited). dial_port: the AUV dials this port instead
-    (the simulated radio's). Returns (vehicle -> file, the USV relay's port)."""
+    at its rate in simulated time (0: as fast as possible, unlimited). The AUV's relay dials the simulated radio
+    (radio.RADIO_HOST at the USV relay's port) and listens on a port of its own, where its UDP socket is bound
+    (the radio forwards the USV's datagrams there). Returns (vehicle -> file, the USV relay's port, the AUV's)."""
     import yaml
     files = {}
-    port = free_port()
+    port, auv_port = free_port(), free_port()
     for v in ("usv", "auv"):
         with open(os.path.join(REPO, "config", "relay", v + ".yaml")) as f:
             c = yaml.safe_load(f)
         if c.get("listen_port"):
             c["listen_port"] = port
+        if v == "auv":
+            c["listen_host"], c["listen_port"] = "127.0.0.1", auv_port
         for p in c.get("peers", []):
             if p.get("address"):
-                p["address"] = "%s:%d" % (p["address"].rsplit(":", 1)[0], dial_port or port)
+                p["address"] = "%s:%d" % (radio_link.RADIO_HOST, port)
         for t in c.get("topics", []):
             if t.get("rate_hz"):
                 t["rate_hz"] = float(t["rate_hz"]) * speedup if speedup > 0 else 0.0
         files[v] = os.path.join(folder, "relay-%s.yaml" % v)
         with open(files[v], "w") as f:
             yaml.safe_dump(c, f)
-    return files, port
+    return files, port, auv_port
 
 
 def vehicle_configs(auv_model):
@@ -93,6 +101,11 @@ def parse_args(argv=None):
                          "estimate")
     ap.add_argument("--usv-params", default="", metavar="FILE",
                     help="the simulated USV's model parameter file (config/models/ schema, e.g. from model_fit)")
+    ap.add_argument("--seed", type=int, default=1,
+                    help="the run's seed S >= 1: every simulated sensor's noise and field effects and the radio's "
+                         "losses (USV simulator 2S-1, AUV 2S, USBL pair 2S-1, as mission_rosfree --seed; default 1)")
+    ap.add_argument("--radio", default=os.path.join(REPO, "config", "relay", "radio.yaml"), metavar="FILE",
+                    help="the simulated radio between the relays (sim::RadioParams keys over the defaults)")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
     ap.add_argument("--screenshot", action="store_true",
                     help="rviz (USV configuration) under Xvfb during the mission: rviz_usv.png in the report")
@@ -106,6 +119,8 @@ def parse_args(argv=None):
     ap.add_argument("--after-kill", type=float, default=60.0,
                     help="simulated seconds to keep watching the surviving vehicle after a stack died (default 60)")
     a = ap.parse_args(argv)
+    if a.seed < 1:
+        ap.error("--seed: 1 or more")
     if a.usv_params and not os.path.isfile(a.usv_params):
         ap.error("--usv-params: no file %s" % a.usv_params)
     if a.kill:
@@ -365,17 +380,20 @@ def run(a):
     configs = vehicle_configs(a.auv_model)
     fault_plan = " ".join(a.fault)
     planned = scenario_check.faults(a.scenario, fault_plan)  # refused before start when it does not parse
+    try:
+        radio_params = radio_link.load_params(a.radio)  # refused before start when it does not validate
+    except ValueError as e:
+        raise scenario_check.ScenarioError(str(e))
     t0 = time.time()
     outcome = {"reason": "not started"}
     with MasterSet(["usv", "auv"], log_dir=os.path.join(out, "logs")) as ms:
         lockstep = not a.free_running
         common = {"sim": "true", "scenario": os.path.abspath(a.scenario), "rate": str(a.rate), "record": "true",
-                  "lockstep": str(lockstep).lower(), "faults": fault_plan}
-        # the radio between the relays, simulated by the job when a link fault is planned
+                  "lockstep": str(lockstep).lower(), "faults": fault_plan, "seed": str(a.seed)}
+        # the radio between the relays, always in their path; the link fault takes it down
         link_faults = [f for f in planned if f["name"] == "link"]
-        radio_port = free_port() if link_faults else None
-        relay, usv_relay_port = relay_configs(os.path.join(out, "logs"), a.rate, radio_port)  # missions never meet
-        radio = Radio(usv_relay_port, radio_port) if link_faults else None
+        relay, usv_relay_port, auv_relay_port = relay_configs(os.path.join(out, "logs"), a.rate)  # missions never meet
+        radio = radio_link.Radio(usv_relay_port, auv_relay_port, radio_params, a.rate, seed=a.seed)
         launches = {
             "usv": ms["usv"].roslaunch(os.path.join(REPO, "launch", "usv.launch"), dict(
                 common, bag=os.path.join(out, "usv.bag"), rviz=str(a.rviz).lower(), relay_config=relay["usv"],
@@ -418,7 +436,7 @@ def run(a):
             if clock:
                 clock.tick([v for v in mons if v not in died])
             sim_t = max(u.get("sim_time", 0.0), av.get("sim_time", 0.0))
-            if radio:
+            if link_faults:
                 for f in link_faults:
                     if f["start_s"] <= sim_t < (f["end_s"] if f["end_s"] is not None else float("inf")):
                         if f.get("injected_s") is None:
@@ -476,9 +494,9 @@ def run(a):
             print("[mission] shared clock: times let go before a stack's navigation and controller got there "
                   "(status_monitor.Pace): " + ", ".join("%s %s" % (v, mons[v].last.get("pace_waits", "?")) for v in mons),
                   flush=True)
-        if radio:
-            print("[mission] simulated radio: " + radio.summary(), flush=True)
-            radio.close()
+        print("[mission] simulated radio: " + radio.summary(), flush=True)
+        outcome["radio"] = radio.stats()
+        radio.close()
         # MasterSet's exit stops roslaunch with SIGINT: rosbag closes its bags cleanly.
     wall = time.time() - t0
     for v in ("usv", "auv"):  # a killed rosbag leaves an unindexed .active file: recover it, lose no data
@@ -499,8 +517,9 @@ def run(a):
     print("[mission] %s: %s" % ("SUCCESS" if m["success"] else "FAILED (%s)" % m["outcome"], outcome["reason"]))
     print("[mission] metrics: " + ", ".join("%s=%s" % (k, m[k]) for k in (
         "outcome", "usv_xte_est_rmse_m", "auv_xte_true_rmse_m", "target_error_m", "min_clearance_m", "auv_nav_source",
-        "auv_nav_rmse_m", "usbl_fixes_received", "usbl_fixes_rejected", "auv_hold_excursion_m", "auv_ascent_drift_m",
-        "recovery_distance_m", "usv_auv_min_clearance_m", "find_to_recovery_s", "sim_time_s", "wall_time_s")))
+        "auv_nav_rmse_m", "usbl_fixes_received", "usbl_fixes_rejected", "usbl_rejected_outliers", "usbl_outliers",
+        "auv_hold_excursion_m", "auv_ascent_drift_m", "recovery_distance_m", "usv_auv_min_clearance_m",
+        "find_to_recovery_s", "sim_time_s", "wall_time_s")))
     print("[mission] report: %s" % out)
     return 0 if m["success"] else 1
 

@@ -3,10 +3,12 @@
 
     python3 report.py --usv-bag usv.bag --auv-bag auv.bag --scenario config/scenarios/pyhajarvi.yaml --out DIR
 
-Writes DIR/metrics.json, DIR/summary.md, DIR/map.png, DIR/cross_track.png. Positions are plotted in the local
-NED frame (north up, east right), metres. Cross-track indicators follow thesis Tables 4.4 and 5.1 (RMSE, SD,
-MAE of the LOS cross-track error while following a path). The AUV's navigation: the horizontal error of its
-estimate /auv/odom against its ground truth, and the USBL fixes it received (/auv/usbl/fix, rejected ones counted).
+Writes DIR/metrics.json, DIR/summary.md, DIR/map.png, DIR/cross_track.png, DIR/navigation.png. Positions are
+plotted in the local NED frame (north up, east right), metres. Cross-track indicators follow thesis Tables 4.4 and
+5.1 (RMSE, SD, MAE of the LOS cross-track error while following a path). The AUV's navigation: the horizontal
+error of its estimate /auv/odom against its ground truth, and the USBL fixes it received (/auv/usbl/fix): those
+the positioning's quality gates rejected and those the navigation filter refused (/auv/navigation/refused_fixes),
+each scored against the simulator's truth, so the report says how many of the rejected fixes were outliers.
 """
 import argparse
 import bisect
@@ -25,6 +27,11 @@ THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4
 
 MODE_FOLLOW_PATH = 1  # GuidanceStatus.MODE_FOLLOW_PATH (for the plots; the metrics tool filters the same)
 QUALITY_OK = 0  # UsblFix.QUALITY_OK: the only fixes navigation may use
+QUALITY_NAMES = {1: "filter_error", 2: "fit_error", 3: "stale", 4: "depth", 5: "no_position"}  # UsblFix.QUALITY_*
+# A USBL fix farther than this from the AUV's true position at its stamp is an outlier: three times the 1 m sigma
+# the navigation gives a fix (fix_min_sigma; range * fix_angle_sigma stays below it within 100 m).
+OUTLIER_M = 3.0
+OUTLIER_GATES = ("filter_error", "fit_error", "depth", "gated")  # rejections for the fix's own quality
 REFERENCE_HOLD = 2  # GuidanceStatus.REFERENCE_HOLD
 ACTION_HOLD = 2  # SafetyState.ACTION_HOLD
 
@@ -128,6 +135,51 @@ def nav_error(estimate, truth):
         if p is not None:
             errors.append((t, math.hypot(n - p[0], e - p[1])))
     return errors
+
+
+def _interpolate3(track, t):
+    """(north, east, down) of a track [(t, north, east, down)] at time t (linear), None outside its span."""
+    times = [p[0] for p in track]
+    if not times or t < times[0] or t > times[-1]:
+        return None
+    i = bisect.bisect_left(times, t)
+    if times[i] == t:
+        return track[i][1:4]
+    a, b = track[i - 1], track[i]
+    w = (t - a[0]) / (b[0] - a[0])
+    return tuple(a[k] + w * (b[k] - a[k]) for k in (1, 2, 3))
+
+
+def usbl_verdicts(fixes, refused, truth):
+    """Every USBL fix scored against the truth: [(stamp, verdict, error_m or None)], verdict "fused", "gated" (the
+    navigation filter refused it) or the positioning's rejection (fit_error, depth, stale, ...); and the summary
+    {rejected, rejected_by, outliers, rejected_outliers, accepted_outliers, gates, gates_outliers} (an outlier:
+    farther than OUTLIER_M from the truth; gates: the rejections for a fix's own quality, the ones meant to catch
+    outliers, as against stale fixes, which lacked the USV's pose in time)."""
+    refused_keys = {(m.header.stamp.to_nsec(), m.range) for m in refused}
+    truth = sorted(truth)
+    scored = []
+    for m in fixes:
+        stamp = m.header.stamp.to_sec()
+        p, q = (m.position_ned.x, m.position_ned.y, m.position_ned.z), _interpolate3(truth, stamp)
+        err = math.dist(p, q) if q is not None and all(math.isfinite(v) for v in p) else None
+        if m.quality != QUALITY_OK:
+            verdict = QUALITY_NAMES.get(m.quality, "quality_%d" % m.quality)
+        else:
+            verdict = "gated" if (m.header.stamp.to_nsec(), m.range) in refused_keys else "fused"
+        scored.append((stamp, verdict, err))
+    rejected = [(v, e) for _, v, e in scored if v != "fused"]
+    gates = [(v, e) for v, e in rejected if v in OUTLIER_GATES]
+    by = {}
+    for v, _ in rejected:
+        by[v] = by.get(v, 0) + 1
+    return scored, {
+        "rejected": len(rejected), "rejected_by": by,
+        "outliers": sum(1 for _, _, e in scored if e is not None and e > OUTLIER_M),
+        "rejected_outliers": sum(1 for _, e in rejected if e is not None and e > OUTLIER_M),
+        "accepted_outliers": sum(1 for _, v, e in scored if v == "fused" and e is not None and e > OUTLIER_M),
+        "gates": len(gates), "gates_outliers": sum(1 for _, e in gates if e is not None and e > OUTLIER_M),
+        "gates_unplaced": sum(1 for _, e in gates if e is None)}
 
 
 def path_ned(path_msg):
@@ -434,6 +486,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     a = read_bag(auv_bag, ["/auv/ground_truth/odom", "/auv/guidance/path", "/auv/guidance/planned_path",
                            "/auv/guidance/status",
                            "/auv/sonar/targets", "/target", "/auv/mission/status", "/auv/odom", "/auv/usbl/fix",
+                           "/auv/navigation/refused_fixes",
                            "/auv/sim/faults", "/auv/safety/transitions", "/auv/navigation/status",
                            "/auv/thruster_setpoints", "/auv/rc_channels"])
     usv_track = odom_track_ned(u["/usv/ground_truth/odom"])
@@ -446,6 +499,8 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     nav_sigma = [(_stamp(t, m), math.sqrt(max(m.pose.covariance[0], m.pose.covariance[7], 0.0))) for t, m in a["/auv/odom"]]
     fixes = [m for _, m in a["/auv/usbl/fix"]]
     fixes_ok = [m for m in fixes if m.quality == QUALITY_OK]
+    fix_scores, usbl = usbl_verdicts(fixes, [m for _, m in a["/auv/navigation/refused_fixes"]],
+                                     [(_stamp(t, m),) + p[1:] for (t, m), p in zip(a["/auv/ground_truth/odom"], auv_track)])
     usv_xte = [(t, m.cross_track_error) for t, m in u["/usv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
     # The AUV's search (until it reports it over): its tracking and navigation figures; after it the AUV holds, comes
     # up and holds at the surface (the hold paths' lead-ins are no search legs), reported apart.
@@ -544,7 +599,17 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "auv_nav_rmse_m": math.sqrt(sum(e * e for e in nav_during) / len(nav_during)) if nav_during else float("nan"),
         "auv_nav_max_m": max(nav_during) if nav_during else float("nan"), "auv_nav_samples": len(nav_during),
         "auv_nav_after_max_m": max(nav_after) if nav_after else float("nan"),
-        "usbl_fixes_received": len(fixes), "usbl_fixes_rejected": len(fixes) - len(fixes_ok),
+        # rejected: by the positioning's quality gates or the navigation filter's; an outlier is a fix farther than
+        # OUTLIER_M from the truth, and the report says how many of the rejected ones were (and got through)
+        "usbl_fixes_received": len(fixes), "usbl_fixes_rejected": usbl["rejected"],
+        "usbl_rejected_by": usbl["rejected_by"], "usbl_outliers": usbl["outliers"],
+        "usbl_rejected_outliers": usbl["rejected_outliers"], "usbl_outliers_accepted": usbl["accepted_outliers"],
+        "usbl_outlier_threshold_m": OUTLIER_M,
+        # the rejections meant to catch outliers (fit error, depth, the filter's gate) and how many were: the rest
+        # of the rejected (stale) lacked the USV's relayed pose at their time; unplaced: no position to score
+        "usbl_rejected_by_gates": usbl["gates"], "usbl_rejected_by_gates_outliers": usbl["gates_outliers"],
+        "usbl_rejected_by_gates_unplaced": usbl["gates_unplaced"],
+        "radio": (outcome or {}).get("radio"),  # what crossed the simulated radio between the relays (the job's)
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
         "min_clearance_m": min_clearance,  # the hull's (sim/contact.h), not the reference point's
         # where the USV really ended, against the true target (the stand-off is part of this distance)
@@ -580,6 +645,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         json.dump(clean, f, indent=2)
 
     _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_est_track, fixes_ok)
+    _navigation_plot(out, nav_err, fix_scores, auv_end_t)
     _summary(out, clean, scenario)
     return clean
 
@@ -699,6 +765,42 @@ def _draw_recovery(ax, usv_track, auv_track, usv_status, auv_status, legend=True
     return drawn
 
 
+def _navigation_plot(out, nav_err, fix_scores, auv_end_t):
+    """navigation.png: the AUV's navigation error over time, and each USBL fix's error against the truth by what
+    became of it (fused, refused by the filter's gate, rejected by a quality gate), the outlier line drawn."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axs = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+    if nav_err:
+        axs[0].plot([t for t, _ in nav_err], [e for _, e in nav_err], lw=1, color="purple")
+    if math.isfinite(auv_end_t):
+        for ax in axs:
+            ax.axvline(auv_end_t, color="grey", lw=0.8, ls=":")
+    axs[0].set_ylabel("navigation error [m]")
+    axs[0].grid(True, alpha=0.3)
+    floor = 0.02  # fixes without a position (no USV pose near them) are drawn here
+    styles = {"fused": ("o", "darkorange", 3, "fused"), "gated": ("x", "red", 6, "refused by the filter's gate"),
+              "fit_error": ("+", "blue", 6, "rejected: fit error"), "depth": ("+", "green", 6, "rejected: depth"),
+              "stale": ("|", "grey", 6, "rejected: stale (no USV pose in time)")}
+    for verdict in sorted({v for _, v, _ in fix_scores}, key=lambda v: (v != "fused", v != "gated", v)):
+        pts = [(t, max(e, floor) if e is not None else floor) for t, v, e in fix_scores if v == verdict]
+        marker, colour, size, label = styles.get(verdict, ("+", "purple", 6, "rejected: " + verdict))
+        axs[1].plot([t for t, _ in pts], [e for _, e in pts], marker, color=colour, ms=size, ls="none",
+                    label="%s (%d)" % (label, len(pts)))
+    axs[1].axhline(OUTLIER_M, color="k", lw=0.8, ls="--", label="outlier (%.0f m)" % OUTLIER_M)
+    axs[1].set_yscale("log")
+    axs[1].set_ylim(bottom=floor * 0.7)
+    axs[1].set_ylabel("USBL fix error vs truth [m]\n(bottom: no position)")
+    axs[1].set_xlabel("simulated time [s] (dotted: the AUV's mission ends)")
+    axs[1].grid(True, alpha=0.3)
+    axs[1].legend(loc="upper right", fontsize=7)
+    fig.suptitle("AUV navigation on USBL fixes")
+    fig.savefig(os.path.join(out, "navigation.png"), dpi=110, bbox_inches="tight")
+    plt.close(fig)
+
+
 def _fmt(v, unit=""):
     return "n/a" if v is None else ("%.3f%s" % (v, unit) if isinstance(v, float) else str(v))
 
@@ -729,7 +831,13 @@ def _summary(out, m, scenario):
         "| minimum clearance, hull to obstacles | %s | |" % _fmt(m["min_clearance_m"], " m"),
         "| AUV navigation error, horizontal (estimate vs truth; %s) | RMSE %s, max %s | |" % (
             m["auv_nav_source"], _fmt(m["auv_nav_rmse_m"], " m"), _fmt(m["auv_nav_max_m"], " m")),
-        "| USBL fixes | %d received, %d rejected | |" % (m["usbl_fixes_received"], m["usbl_fixes_rejected"]),
+        "| USBL fixes | %d received, %d rejected (%s) | |" % (
+            m["usbl_fixes_received"], m["usbl_fixes_rejected"],
+            ", ".join("%s %d" % kv for kv in sorted(m.get("usbl_rejected_by", {}).items())) or "none"),
+        "| USBL outliers (> %.0f m from the truth) | %d, of them rejected %d; rejected by the outlier gates (fit "
+        "error, depth, the filter's) %d, of them outliers %d, without a position %d | |" % (
+            OUTLIER_M, m["usbl_outliers"], m["usbl_outliers"] - m["usbl_outliers_accepted"],
+            m["usbl_rejected_by_gates"], m["usbl_rejected_by_gates_outliers"], m["usbl_rejected_by_gates_unplaced"]),
         "| USV final distance to the true target | %s | |" % _fmt(m["usv_final_distance_to_target_m"], " m"),
         "| USV drift while waiting for the target | %s | |" % _fmt(m["usv_wait_drift_m"], " m"),
         "| USV hold on station (target, recovery), 95th percentile, from on station (within station_radius) | %s | |"
@@ -756,7 +864,7 @@ def _summary(out, m, scenario):
             " Navigation: error up to %s, sigma %s -> %s, statuses %s, back under %.1f m %s s after." % (
                 _fmt(f["nav_error_max_m"], " m"), _fmt(f["nav_sigma_before_m"], " m"), _fmt(f["nav_sigma_max_m"], " m"),
                 ", ".join(f["nav_statuses"]), NAV_RECOVERED_M, _fmt(f["nav_recovered_after_s"]))), ""]
-    lines += ["![map](map.png)", "", "![cross-track error](cross_track.png)", ""]
+    lines += ["![map](map.png)", "", "![cross-track error](cross_track.png)", "", "![navigation](navigation.png)", ""]
     if "rviz_pixels" in m:
         lines += ["![rviz, USV configuration](rviz_usv.png)", ""]
     with open(os.path.join(out, "summary.md"), "w") as f:

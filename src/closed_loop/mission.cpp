@@ -13,6 +13,12 @@ namespace closed_loop {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The relayed messages' sizes on the radio: the relay's frame (32 bytes of header, a 32-byte HMAC, the topic's
+// name) around the serialised message. /usv_gps (NavSatFix, 123 bytes) and /usv_heading (QuaternionStamped, 55)
+// go as one here (one reading, so they are lost together); /target (Target, about 200 bytes).
+// Each vehicle's /mission/status (MissionStatus, about 150 bytes with its phase and reason strings) crosses too.
+constexpr std::size_t kUsvPoseBytes = (64 + 8 + 123) + (64 + 12 + 55), kTargetBytes = 64 + 7 + 200;
+constexpr std::size_t kStatusBytes = 64 + 20 + 150;
 
 void record(VehicleRecord& r, const VehicleState& truth, long step, const guidance::GuidanceOutput* g,
             const guidance::GuidancePipeline& pipeline) {
@@ -74,6 +80,7 @@ MissionConfig loadMission(const std::string& config_dir, const std::string& scen
   c.usv = loadUsvStack(config_dir);
   c.auv = loadAuvStack(config_dir, auv_model, scenario_file);
   c.auv.usv_gps_antenna = c.usv.sim.gps.antenna;  // the USBL's mounting is from the point /usv_gps reports
+  c.radio = sim::loadRadioParams(config_dir + "/relay/radio.yaml");
   return c;
 }
 
@@ -109,10 +116,10 @@ MissionResult runMission(const MissionConfig& cfg) {
   AuvStack auv(cfg.scenario, cfg.auv);
   // the relay's topics over the radio: /usv_gps and /usv_heading to the AUV (best effort), /target back (reliable),
   // each mission's status to the other (best effort, every mission period)
-  RadioLink<sim::GpsCompassReading> to_auv(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed);
-  RadioLink<Eigen::Vector3d> to_usv(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed + 1);
-  RadioLink<UsvStatusMsg> usv_status(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed + 2);
-  RadioLink<AuvStatusMsg> auv_status(cfg.relay_latency, cfg.relay_loss, cfg.relay_seed + 3);
+  RadioLink<sim::GpsCompassReading> to_auv(cfg.radio, 4 * cfg.radio_seed - 3);
+  RadioLink<Eigen::Vector3d> to_usv(cfg.radio, 4 * cfg.radio_seed - 2);
+  RadioLink<UsvStatusMsg> usv_status(cfg.radio, 4 * cfg.radio_seed - 1);
+  RadioLink<AuvStatusMsg> auv_status(cfg.radio, 4 * cfg.radio_seed);
   const int status_every = stepsPer(1.0 / cfg.usv.mission_period, cfg.usv.sim.dt);
   long step = 0;
   double t = 0.0;
@@ -149,7 +156,7 @@ MissionResult runMission(const MissionConfig& cfg) {
     auv_status.setUp(link_up);
     if (usv_alive) {
       usv.step();
-      if (usv.gpsNow()) to_auv.send(usv.time(), *usv.gpsNow(), false);
+      if (usv.gpsNow()) to_auv.send(usv.time(), *usv.gpsNow(), kUsvPoseBytes, false);
     }
     t = usv_alive ? usv.time() : t + cfg.usv.sim.dt;
     if (auv_alive) {
@@ -167,14 +174,15 @@ MissionResult runMission(const MissionConfig& cfg) {
     }
     if (auto tg = auv.takeTarget()) {
       res.target = *tg;  // the last one the AUV sent (refined while it holds)
-      to_usv.send(t, *tg, true);
+      to_usv.send(t, *tg, kTargetBytes, true);
     }
     if (step % status_every == 0) {  // each mission's status, as its nodelet's timer publishes it
       const mission::UsvMission& um = usv.mission();
       const mission::AuvMission& am = auv.mission();
       if (usv_alive && um.pose())
-        usv_status.send(t, {um.phase(), *um.pose(), um.stationPoint() ? *um.stationPoint() : mission::kNoPoint}, false);
-      if (auv_alive && am.pose()) auv_status.send(t, {am.phase(), *am.pose(), am.stationary()}, false);
+        usv_status.send(t, {um.phase(), *um.pose(), um.stationPoint() ? *um.stationPoint() : mission::kNoPoint},
+                        kStatusBytes, false);
+      if (auv_alive && am.pose()) auv_status.send(t, {am.phase(), *am.pose(), am.stationary()}, kStatusBytes, false);
     }
     for (const auto& m : usv_status.receive(t)) auv.onUsvStatus(m.phase, m.position, m.station, t);
     for (const auto& m : auv_status.receive(t)) usv.onAuvStatus(m.phase, m.position, m.stationary, t);

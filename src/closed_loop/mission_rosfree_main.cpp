@@ -11,11 +11,10 @@
 // seconds (default 60). The recovery figures (docs/mission.md, "Recovery") and the times of the search's end, the
 // ascent, the surface and RECOVERED come with the rest.
 // The AUV navigates on USBL fixes as in the main job (--auv-navigation ins: the simulator's INS-like estimate);
-// the radio between the vehicles delays every message --relay-latency seconds and loses best-effort ones with
-// probability --relay-loss.
+// the radio between the vehicles is the main job's (sim/radio.h: latency, jitter, rate, losses in bursts) with
+// its parameters from CONFIG/relay/radio.yaml or --radio FILE, its losses drawn from the seed too.
 //   mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--auv-navigation usbl|ins] [--config DIR]
-//                   [--relay-latency S] [--relay-loss P] [--fault PLAN] [--seed S] [--kill V@T] [--after-kill S]
-//                   [--out DIR]
+//                   [--radio FILE] [--fault PLAN] [--seed S] [--kill V@T] [--after-kill S] [--out DIR]
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -79,9 +78,8 @@ void writeTrace(const std::string& path, const char* header, const std::vector<s
 
 int main(int argc, char** argv) {
   std::string scenario, model = "girona500", config = OFFSHORE_GNC_CONFIG_DIR, out, faults;
-  std::string navigation = "usbl", kill;
+  std::string navigation = "usbl", radio, kill;
   double after_kill = 60.0;
-  double latency = -1.0, loss = 0.0;  // latency < 0: the mission's default
   long seed = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -95,9 +93,8 @@ int main(int argc, char** argv) {
     if (a == "--scenario") scenario = next();
     else if (a == "--auv-model") model = next();
     else if (a == "--auv-navigation") navigation = next();
-    else if (a == "--relay-loss") loss = number(a, next());
+    else if (a == "--radio") radio = next();
     else if (a == "--config") config = next();
-    else if (a == "--relay-latency") latency = number(a, next());
     else if (a == "--out") out = next();
     else if (a == "--fault") faults += " " + next();
     else if (a == "--seed") seed = static_cast<long>(number(a, next()));
@@ -106,8 +103,8 @@ int main(int argc, char** argv) {
     else {
       std::fprintf(stderr,
                    "usage: mission_rosfree --scenario FILE [--auv-model girona500|acolor] [--auv-navigation usbl|ins] "
-                   "[--config DIR] [--relay-latency S] [--relay-loss P] [--fault PLAN] [--seed S] [--kill V@T] "
-                   "[--after-kill S] [--out DIR]\n");
+                   "[--config DIR] [--radio FILE] [--fault PLAN] [--seed S] [--kill V@T] [--after-kill S] "
+                   "[--out DIR]\n");
       return 2;
     }
   }
@@ -117,14 +114,13 @@ int main(int argc, char** argv) {
   }
   try {
     closed_loop::MissionConfig cfg = closed_loop::loadMission(config, scenario, model);
-    if (latency >= 0.0) cfg.relay_latency = requireRange("--relay-latency", latency, 0, 60);
-    cfg.relay_loss = requireRange("--relay-loss", loss, 0, 1);
+    if (!radio.empty()) cfg.radio = sim::loadRadioParams(radio);
     cfg.auv.navigation = navigation;
     requireRange("--seed", static_cast<double>(seed), 1, 1e9);
     cfg.usv.sim.seed = static_cast<std::uint64_t>(2 * seed - 1);
     cfg.auv.sim.seed = static_cast<std::uint64_t>(2 * seed);
     cfg.auv.usbl_seed = static_cast<unsigned>(2 * seed - 1);  // config/usbl/usbl.yaml's seed 1 for S = 1
-    cfg.relay_seed = static_cast<unsigned>(seed);
+    cfg.radio_seed = static_cast<std::uint64_t>(seed);
     const FaultPlan plan = FaultPlan::parse(faults);  // ConfigError naming a bad item
     cfg.link_faults = plan.of("both");  // link, geofence: between the vehicles
     cfg.usv.sim.faults = plan.of("usv");

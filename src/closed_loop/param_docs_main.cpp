@@ -17,6 +17,8 @@
 #include "offshore_gnc/perception/sonar_targets.h"
 #include "offshore_gnc/safety/supervisor.h"
 #include "offshore_gnc/sim/contact.h"
+#include "offshore_gnc/sim/radio.h"
+#include "offshore_gnc/sim/sensors.h"
 #include "offshore_gnc/usbl/config.h"
 #include "offshore_gnc/usbl/session.h"
 
@@ -98,6 +100,17 @@ int main() {
         usbl::qualityLimitsTable(), {{"default", usbl::QualityLimits()}});
   table("Simulated USBL pair", "`config/usbl/usbl.yaml` -> the UsblSim nodelet and the ROS-free mission.",
         usbl::beaconSimTable(), {{"default", usbl::BeaconSimConfig()}});
+  table("Simulated GPS-compass", "the UsvSim nodelet's private `gps/...` parameters (docs/simulation.md); the "
+        "ROS-free mission uses these defaults.", sim::GpsCompassConfig::table(), {{"default", sim::GpsCompassConfig()}});
+  table("Simulated depth sensor", "the AuvSim nodelet's private `depth/...` parameters.", sim::DepthConfig::table(),
+        {{"default", sim::DepthConfig()}});
+  table("Simulated AHRS", "the AuvSim nodelet's private `ahrs/...` parameters.", sim::AhrsConfig::table(),
+        {{"default", sim::AhrsConfig()}});
+  table("Simulated DVL", "the AuvSim nodelet's private `dvl/...` parameters.", sim::DvlConfig::table(),
+        {{"default", sim::DvlConfig()}});
+  table("Simulated radio", "`config/relay/radio.yaml` -> the main job's radio between the relays "
+        "(python/offshore_gnc/radio.py) and the ROS-free mission's (docs/relay.md).", sim::RadioParams::table(),
+        {{"default", sim::RadioParams()}});
   table("AUV navigation", "`config/navigation/auv_<model>.yaml` -> the AuvNavigation nodelet (USBL + depth + AHRS + DVL).",
         navigation::AuvNavigatorConfig::table(), {{"default", navigation::AuvNavigatorConfig()}});
   table("Site origin",

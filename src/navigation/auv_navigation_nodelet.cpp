@@ -3,7 +3,8 @@
 // from the AHRS (/auv/imu), and the DVL (/auv/dvl, Girona500) or the commanded surge (/auv/guidance/status,
 // aColor) -> /auv/odom + TF map -> auv/base_link at a fixed rate on the ROS (simulation) clock, once the first fix
 // has initialised the filter and while it has a heading (no_heading: its dead reckoning has stopped, so it
-// publishes no estimate rather than a frozen one, and the safety supervisor's navigation rule sees the silence); /auv/navigation/status (latched) and diagnostics. Replaces the simulator's
+// publishes no estimate rather than a frozen one, and the safety supervisor's navigation rule sees the silence); /auv/navigation/status (latched),
+// the QUALITY_OK fixes the filter refused (gated or too old) on /auv/navigation/refused_fixes, and diagnostics. Replaces the simulator's
 // INS-like /auv/odom with `navigation:=usbl`. Thin: parameters, message conversion, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/TwistWithCovarianceStamped.h>
@@ -89,6 +90,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     }
 
     odom_pub_ = nh.advertise<nav_msgs::Odometry>("/auv/odom", 10);
+    refused_pub_ = nh.advertise<UsblFix>("/auv/navigation/refused_fixes", 10);
     status_pub_ = nh.advertise<std_msgs::String>("/auv/navigation/status", 1, true);
     std_msgs::String initial;
     initial.data = statusName(navigation::NavStatus::kNoFix);
@@ -124,7 +126,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     }
     std::lock_guard<std::mutex> l(mutex_);
     if (!nav_->usblFix(m->header.stamp.toSec(), ned, params_.fixCovariance(m->range)))
-      NODELET_DEBUG("USBL fix refused by the filter (gate or too old; see the counters)");
+      refused_pub_.publish(m);  // gated (an outlier) or too old: the counters say which; the report scores them
   }
 
   void onPressure(const sensor_msgs::FluidPressure::ConstPtr& m) {
@@ -297,7 +299,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
   navigation::NavStatus status_ = navigation::NavStatus::kNoFix;            // latest, for diagnostics
   navigation::NavStatus published_status_ = navigation::NavStatus::kNoFix;  // on /auv/navigation/status
   ros::Time start_, last_stamp_;
-  ros::Publisher odom_pub_, status_pub_;
+  ros::Publisher odom_pub_, status_pub_, refused_pub_;
   ros::Subscriber fix_sub_, pressure_sub_, imu_sub_, dvl_sub_, guidance_sub_;
   tf2_ros::TransformBroadcaster tf_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;

@@ -9,7 +9,11 @@
 // Yaw is not a filter state: the AHRS yaw is far better than anything the USBL fixes could tell about it, and
 // keeping it out keeps the filter linear (no EKF linearisation), so a replay reproduces the on-time filter
 // exactly. Yaw is carried beside the filter (in each history entry, so a replayed DVL sample is rotated by the
-// yaw of its own time) and extrapolated with the AHRS rate up to heading_timeout.
+// yaw of its own time) and extrapolated with the AHRS rate up to heading_timeout. Its bias b is a state: a
+// velocity w measured along the AHRS heading is really w rotated back by b, i.e. w = v + b J w to first order (J
+// the quarter turn about z), linear in the state with J w known from the measurement. The fixes see the drift a
+// bias causes across the direction of travel, so b converges while the vehicle moves; the yaw given out is the
+// AHRS's less b (the sonar places its targets with it too).
 #include "offshore_gnc/navigation/auv_navigator.h"
 
 #include <algorithm>
@@ -38,7 +42,9 @@ const ParamTable<AuvNavigatorConfig>& AuvNavigatorConfig::table() {
       .number("gate_chi2", &P::gate_chi2, 1.0, 1e4, "",
               "chi-square gate on a fix's squared Mahalanobis distance (3 dof: 16.27 = 99.9 %)")
       .integer("max_rejects_in_row", &P::max_rejects_in_row, 1, 1000,
-               "gated fixes in a row after which the next gated fix re-initialises the filter")
+               "gated fixes in a row after which the next gated fix re-initialises the filter, if they agree")
+      .integer("confirm_fixes", &P::confirm_fixes, 1, 10,
+               "fixes agreeing with a start that confirm it; before, two gated fixes in a row that agree restart it")
       .number("accel_psd_h", &P::accel_psd_h, 1e-6, 100.0, "m^2/s^3",
               "process noise: white-acceleration spectral density, north and east")
       .number("accel_psd_v", &P::accel_psd_v, 1e-6, 100.0, "m^2/s^3",
@@ -53,7 +59,10 @@ const ParamTable<AuvNavigatorConfig>& AuvNavigatorConfig::table() {
               "water current (estimated with the commanded-speed model): standard deviation, first-order Markov")
       .number("current_tau", &P::current_tau, 1.0, 1e6, "s", "water current: correlation time")
       .number("init_velocity_sigma", &P::init_velocity_sigma, 1e-3, 100.0, "m/s",
-              "velocity uncertainty when the first fix initialises the filter");
+              "velocity uncertainty when the first fix initialises the filter")
+      .degrees("heading_bias_sigma_deg", &P::heading_bias_sigma, 0.01, 45.0,
+               "the AHRS heading's bias (a filter state): standard deviation, first-order Markov")
+      .number("heading_bias_tau", &P::heading_bias_tau, 1.0, 1e6, "s", "the heading bias: correlation time");
   return t;
 }
 
@@ -169,7 +178,7 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
       propagate(f, in.t);
       if (!f.initialised) return true;  // the first fix sets z, the next depth sample corrects it
       Eigen::Matrix<double, 1, kNavStates> H = Eigen::Matrix<double, 1, kNavStates>::Zero();
-      H(0, 2) = 1.0;
+      H(0, kPos + 2) = 1.0;
       update<1>(f, H, Eigen::Matrix<double, 1, 1>(in.a - f.x(2)),
                 Eigen::Matrix<double, 1, 1>(cfg_.depth_sigma * cfg_.depth_sigma));
       return true;
@@ -180,11 +189,12 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
       f.dvl_t = in.t;
       propagate(f, in.t);
       if (!f.initialised) return true;
-      // body FRD -> NED by yaw only: the AUV keeps roll and pitch near zero
-      const Eigen::Vector3d v = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * in.v;
+      // body FRD -> NED by the AHRS yaw only (the AUV keeps roll and pitch near zero): w = v + b J w
+      const Eigen::Vector3d w = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * in.v;
       Eigen::Matrix<double, 3, kNavStates> H = Eigen::Matrix<double, 3, kNavStates>::Zero();
-      H.middleCols<3>(3).setIdentity();
-      update<3>(f, H, v - f.x.segment<3>(3), Eigen::Matrix3d::Identity() * cfg_.dvl_sigma * cfg_.dvl_sigma);
+      H.middleCols<3>(kVel).setIdentity();
+      H.col(kBias) << -w.y(), w.x(), 0.0;
+      update<3>(f, H, w - H * f.x, Eigen::Matrix3d::Identity() * cfg_.dvl_sigma * cfg_.dvl_sigma);
       return true;
     }
     case Kind::kCommand: {
@@ -198,11 +208,12 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
       propagate(f, in.t);
       if (!f.initialised) return true;
       Eigen::Matrix<double, 2, kNavStates> H = Eigen::Matrix<double, 2, kNavStates>::Zero();
-      H(0, 3) = H(1, 4) = 1.0;
-      H(0, 6) = H(1, 7) = -1.0;
-      const Eigen::Vector2d v(in.a * std::cos(yaw), in.a * std::sin(yaw));
-      update<2>(f, H, v - (f.x.segment<2>(3) - f.x.tail<2>()),
-                Eigen::Matrix2d::Identity() * cfg_.cmd_sigma * cfg_.cmd_sigma);
+      const Eigen::Vector2d w(in.a * std::cos(yaw), in.a * std::sin(yaw));  // along the AHRS heading: w = v - c + b J w
+      H(0, kVel) = H(1, kVel + 1) = 1.0;
+      H(0, kCur) = H(1, kCur + 1) = -1.0;
+      H(0, kBias) = -w.y();
+      H(1, kBias) = w.x();
+      update<2>(f, H, w - H * f.x, Eigen::Matrix2d::Identity() * cfg_.cmd_sigma * cfg_.cmd_sigma);
       return true;
     }
   }
@@ -212,64 +223,96 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
 bool AuvNavigator::applyFix(Filter& f, const Input& in, bool first) {
   propagate(f, in.t);
   bool reinit = false;
+  int n_agreeing = 1;
   if (f.initialised) {
-    const Eigen::Vector3d y = in.v - f.x.head<3>();
+    const Eigen::Vector3d y = in.v - f.x.segment<3>(kPos);
     const Eigen::Matrix3d S = f.P.topLeftCorner<3, 3>() + in.cov;
     const double d2 = y.dot(S.ldlt().solve(y));
     if (d2 <= cfg_.gate_chi2) {
       Eigen::Matrix<double, 3, kNavStates> H = Eigen::Matrix<double, 3, kNavStates>::Zero();
-      H.leftCols<3>().setIdentity();
+      H.middleCols<3>(kPos).setIdentity();
       update<3>(f, H, y, in.cov);
       f.rejects_in_row = 0;
+      ++f.agreeing;
       f.fix_t = in.t;
       count(first, "fix_accepted");
       return true;
     }
-    if (f.rejects_in_row < cfg_.max_rejects_in_row) {
+    // Outliers (a reflected acoustic path) are gated one by one. A streak of gated fixes that agree with each other
+    // says the estimate is wrong instead (a missed jump, a diverged dead reckoning): after max_rejects_in_row of
+    // them the filter starts again from this fix, so the gate cannot lock it out forever. Scattered ones do not.
+    // A start no fix has yet agreed with may itself have been an outlier: there two agreeing gated fixes suffice.
+    const bool confirmed = f.agreeing >= cfg_.confirm_fixes;
+    const int needed = confirmed ? cfg_.max_rejects_in_row : 1;
+    const int n = std::min({f.rejects_in_row + 1, needed + 1, static_cast<int>(f.streak.size())});
+    f.streak[static_cast<std::size_t>(f.rejects_in_row) % f.streak.size()] << y, in.cov.trace() / 3.0;
+    const bool enough = f.rejects_in_row >= needed;
+    if (!enough || !streakAgrees(f, n)) {
+      if (enough) count(first, "reinit_refused_scattered");
       ++f.rejects_in_row;
       count(first, "fix_rejected_gate");
       return false;
     }
-    // So many consistent fixes against the estimate: the estimate is wrong (a missed jump, a diverged dead
-    // reckoning), not the fixes. Start again from this fix so the gate cannot lock the filter out forever.
     reinit = true;
+    n_agreeing = n;
     count(first, "reinit");
+    if (!confirmed) count(first, "reinit_unconfirmed");
   }
   // The DVL's velocity is independent of a position jump: keep it when the DVL is measuring, else start at rest.
-  // The current is too: a re-initialisation keeps it, the first fix starts it at zero with its prior spread.
+  // The current and the heading bias are too: a re-initialisation keeps them, the first fix starts them at zero
+  // with their prior spread.
   const bool keep_velocity = reinit && in.t - f.dvl_t <= cfg_.dvl_timeout;
-  const Eigen::Matrix3d Pvv = f.P.block<3, 3>(3, 3);
-  const Eigen::Matrix2d Pcc = reinit ? f.P.bottomRightCorner<2, 2>().eval()
-                                     : Eigen::Matrix2d::Identity() * cfg_.current_sigma * cfg_.current_sigma;
-  if (!reinit) f.x.tail<2>().setZero();
+  const Eigen::Matrix3d Pvv = f.P.block<3, 3>(kVel, kVel);
+  Eigen::Matrix3d Pcb = f.P.block<3, 3>(kCur, kCur);  // current and bias
+  if (!reinit) {
+    f.x.segment<3>(kCur).setZero();
+    Pcb = Eigen::Vector3d(cfg_.current_sigma * cfg_.current_sigma, cfg_.current_sigma * cfg_.current_sigma,
+                          cfg_.heading_bias_sigma * cfg_.heading_bias_sigma).asDiagonal();
+  }
   f.P.setZero();
-  f.P.topLeftCorner<3, 3>() = in.cov;
-  f.P.bottomRightCorner<2, 2>() = Pcc;
-  f.x.head<3>() = in.v;
+  f.P.block<3, 3>(kPos, kPos) = in.cov;
+  f.P.block<3, 3>(kCur, kCur) = Pcb;
+  f.x.segment<3>(kPos) = in.v;
   if (keep_velocity) {
-    f.P.block<3, 3>(3, 3) = Pvv;
+    f.P.block<3, 3>(kVel, kVel) = Pvv;
   } else {
-    f.x.segment<3>(3).setZero();
-    f.P.block<3, 3>(3, 3) = Eigen::Matrix3d::Identity() * cfg_.init_velocity_sigma * cfg_.init_velocity_sigma;
+    f.x.segment<3>(kVel).setZero();
+    f.P.block<3, 3>(kVel, kVel) = Eigen::Matrix3d::Identity() * cfg_.init_velocity_sigma * cfg_.init_velocity_sigma;
   }
   f.initialised = true;
+  f.agreeing = reinit ? n_agreeing : 1;  // a re-initialisation on a streak: its fixes agreed with each other
   f.rejects_in_row = 0;
   f.fix_t = in.t;
   count(first, "fix_accepted");
   return true;
 }
 
-// Constant velocity with white acceleration plus a horizontal position random walk; the current first-order
-// Markov. Exact discretisations: splitting an interval changes nothing.
+// The latest n innovations of the streak (the current fix's included) each within the gate of their mean (by the
+// fix's own variance).
+bool AuvNavigator::streakAgrees(const Filter& f, int n) const {
+  const std::size_t size = f.streak.size();
+  const auto at = [&](int k) -> const Eigen::Vector4d& {  // k-th latest
+    return f.streak[(static_cast<std::size_t>(f.rejects_in_row) + size - static_cast<std::size_t>(k)) % size];
+  };
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int k = 0; k < n; ++k) mean += at(k).head<3>() / n;
+  for (int k = 0; k < n; ++k)
+    if ((at(k).head<3>() - mean).squaredNorm() > cfg_.gate_chi2 * at(k)[3]) return false;
+  return true;
+}
+
+// Constant velocity with white acceleration plus a horizontal position random walk; the current and the heading
+// bias first-order Markov. Exact discretisations: splitting an interval changes nothing.
 void AuvNavigator::propagate(Filter& f, double t) const {
   const double dt = t - f.t;
   if (!(dt > 0.0)) return;
   f.t = t;
   if (!f.initialised) return;
   NavMatrix F = NavMatrix::Identity();
-  F.block<3, 3>(0, 3) = Eigen::Matrix3d::Identity() * dt;
-  const double decay = std::exp(-dt / cfg_.current_tau);
-  F.bottomRightCorner<2, 2>() *= decay;
+  F.block<3, 3>(kPos, kVel) = Eigen::Matrix3d::Identity() * dt;
+  const double decay = std::exp(-dt / cfg_.current_tau), decay_b = std::exp(-dt / cfg_.heading_bias_tau);
+  F.block<2, 2>(kCur, kCur) *= decay;
+  F(kBias, kBias) = decay_b;
   f.x = F * f.x;
   NavMatrix Q = NavMatrix::Zero();
   const double q[3] = {cfg_.accel_psd_h, cfg_.accel_psd_h, cfg_.accel_psd_v};
@@ -280,8 +323,9 @@ void AuvNavigator::propagate(Filter& f, double t) const {
   }
   Q(0, 0) += cfg_.position_psd * dt;
   Q(1, 1) += cfg_.position_psd * dt;
-  const double var_c = cfg_.current_sigma * cfg_.current_sigma;
-  Q.bottomRightCorner<2, 2>() = Eigen::Matrix2d::Identity() * var_c * (1.0 - decay * decay);
+  const double var_c = cfg_.current_sigma * cfg_.current_sigma, var_b = cfg_.heading_bias_sigma * cfg_.heading_bias_sigma;
+  Q.block<2, 2>(kCur, kCur) = Eigen::Matrix2d::Identity() * var_c * (1.0 - decay * decay);
+  Q(kBias, kBias) = var_b * (1.0 - decay_b * decay_b);
   f.P = F * f.P * F.transpose() + Q;
 }
 
@@ -308,13 +352,16 @@ AuvNavEstimate AuvNavigator::estimate(double t) const {
   propagate(f, t);
   AuvNavEstimate e;
   e.t = t;
-  e.position = f.x.head<3>();
-  e.velocity = f.x.segment<3>(3);
+  e.position = f.x.segment<3>(kPos);
+  e.velocity = f.x.segment<3>(kVel);
   e.covariance = f.P.topLeftCorner<6, 6>();
-  e.current = f.x.tail<2>();
-  e.current_covariance = f.P.bottomRightCorner<2, 2>();
+  e.current = f.x.segment<2>(kCur);
+  e.current_covariance = f.P.block<2, 2>(kCur, kCur);
+  e.heading_bias = f.initialised ? f.x(kBias) : 0.0;
+  e.heading_bias_sigma = f.initialised ? std::sqrt(f.P(kBias, kBias)) : cfg_.heading_bias_sigma;
   e.yaw_rate = f.yaw_rate;
   if (!headingAt(f, t, e.yaw)) e.yaw = f.yaw;
+  e.yaw = wrapAngle(e.yaw - e.heading_bias);
   if (!f.initialised)
     e.status = NavStatus::kNoFix;
   else if (t - f.heading_t > cfg_.heading_timeout)

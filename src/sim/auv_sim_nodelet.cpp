@@ -49,15 +49,13 @@ class AuvSimNodelet : public nodelet::Nodelet {
       cfg.sonar.mount = {sm[0], sm[1], sm[2]};
       cfg.sonar.tilt = deg2rad(p.number("sonar/tilt_deg", rad2deg(cfg.sonar.tilt), -90, 90));
       ros_util::readParams(p, sim::SonarWaterConfig::table(), cfg.sonar.water, "sonar/");
-      cfg.depth.rate_hz = p.number("depth/rate", cfg.depth.rate_hz, 0.1, 100);
-      cfg.depth.water_density = p.number("depth/water_density", cfg.depth.water_density, 900, 1100);
-      cfg.ahrs.rate_hz = p.number("ahrs/rate", cfg.ahrs.rate_hz, 0.1, 100);
+      ros_util::readParams(p, sim::DepthConfig::table(), cfg.depth);
+      ros_util::readParams(p, sim::AhrsConfig::table(), cfg.ahrs);
       cfg.odom_rate_hz = p.number("odom/rate", cfg.odom_rate_hz, 0.1, 100);
       cfg.ins.position_sigma = p.number("odom/position_sigma", cfg.ins.position_sigma, 0, 100);
       cfg.ins.drift_per_sqrt_s = p.number("odom/drift", cfg.ins.drift_per_sqrt_s, 0, 10);
       odom_on_ = p.flag("odom/enabled", true);  // false: the navigation nodelet publishes /auv/odom + TF
-      cfg.dvl.rate_hz = p.number("dvl/rate", cfg.dvl.rate_hz, 0.1, 100);
-      cfg.dvl.velocity_sigma = p.number("dvl/sigma", cfg.dvl.velocity_sigma, 0, 10);
+      ros_util::readParams(p, sim::DvlConfig::table(), cfg.dvl);
       const std::string vehicle = p.choice("vehicle_model", "girona500", {"girona500", "acolor"});
       cfg.auv = vehicle == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
       const std::string params = p.text("model_params", "");  // config/models/*.yaml (models module)

@@ -7,3 +7,4 @@ target_link_libraries(offshore_gnc_sim PUBLIC yaml-cpp opencv_core opencv_imgpro
 offshore_gnc_tool(sim_bench SOURCES src/sim/sim_bench.cpp)
 offshore_gnc_tool(scenario_check SOURCES src/sim/scenario_check_main.cpp)
 offshore_gnc_tool(sim_log SOURCES src/sim/sim_log_main.cpp)
+offshore_gnc_tool(radio_params SOURCES src/sim/radio_params_main.cpp)

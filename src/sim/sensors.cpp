@@ -29,19 +29,43 @@ void requireRate(const char* name, double hz) { requireRange(name, hz, 1e-3, 1e4
 }  // namespace
 
 // ---------------------------------------------------------------- GPS-compass
-GpsCompass::GpsCompass(const GpsCompassConfig& cfg, const geo::LocalNed& frame, std::uint64_t seed)
-    : cfg_(cfg), frame_(frame), rng_(seed) {
-  requireRate("gps/rate", cfg.rate_hz);
-  requireRange("gps/position_sigma", cfg.position_sigma, 0, 100);
-  requireRange("gps/position_tau", cfg.position_tau, 0, 1e5);
-  requireRange("gps/position_white_sigma", cfg.position_white_sigma, 0, 100);
-  requireRange("gps/velocity_sigma", cfg.velocity_sigma, 0, 10);
-  requireRange("gps/rate_sigma", cfg.rate_sigma, 0, 1);
-  requireRange("gps/altitude_sigma", cfg.altitude_sigma, 0, 100);
-  requireRange("gps/heading_sigma", cfg.heading_sigma, 0, 1);
+const ParamTable<GpsCompassConfig>& GpsCompassConfig::table() {
+  using P = GpsCompassConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("gps/rate", &P::rate_hz, 0.1, 100, "Hz", "fixes per second")
+      .number("gps/position_sigma", &P::position_sigma, 0, 100, "m", "slow horizontal error (Gauss-Markov), 1-sigma")
+      .number("gps/position_tau", &P::position_tau, 0, 1e5, "s", "its correlation time (0: white)")
+      .number("gps/position_white_sigma", &P::position_white_sigma, 0, 100, "m", "receiver jitter per fix")
+      .number("gps/altitude_sigma", &P::altitude_sigma, 0, 100, "m", "altitude noise")
+      .degrees("gps/heading_sigma_deg", &P::heading_sigma, 0, 45, "heading noise")
+      .number("gps/velocity_sigma", &P::velocity_sigma, 0, 10, "m/s", "Doppler velocity noise, each axis")
+      .numberAt("gps/rate_sigma_deg", [](P& p) -> double& { return p.rate_sigma; }, 0, 45, "deg/s",
+                "rate-of-turn noise", kPi / 180.0)
+      .list("gps/antenna", 3, -50, 50, "m", "the antenna in the body frame (x forward, y starboard, z down)",
+            [](const P& p) { return std::vector<double>{p.antenna.x(), p.antenna.y(), p.antenna.z()}; },
+            [](P& p, const std::vector<double>& v) { p.antenna = {v[0], v[1], v[2]}; })
+      .number("gps/jump_interval", &P::jump_interval, 0, 1e6, "s",
+              "mean time between jumps of the fix (multipath, SBAS corrections; Poisson); 0: none")
+      .number("gps/jump_sigma", &P::jump_sigma, 0, 100, "m", "a jump's offset, each horizontal axis, 1-sigma")
+      .number("gps/jump_duration", &P::jump_duration, 0.01, 1e5, "s", "mean time a jump holds (exponential)")
+      .number("gps/outage_interval", &P::outage_interval, 0, 1e6, "s",
+              "mean time between outages (no fix, no heading; Poisson); 0: none")
+      .number("gps/outage_duration", &P::outage_duration, 0.2, 600, "s", "an outage lasts uniformly 0.2 s .. this");
+  return t;
 }
 
+GpsCompass::GpsCompass(const GpsCompassConfig& cfg, const geo::LocalNed& frame, std::uint64_t seed)
+    : cfg_(cfg), frame_(frame), rng_(seed) {
+  GpsCompassConfig::table().validate(cfg);
+}
+
+namespace {
+// An event of a Poisson process with this mean interval (0: never) starting within dt.
+bool starts(double interval, double dt, double u) { return interval > 0.0 && dt > 0.0 && u < -std::expm1(-dt / interval); }
+}  // namespace
+
 GpsCompassReading GpsCompass::measure(const VehicleState& s) {
+  const double dt = started_ ? std::max(0.0, s.t - last_t_) : 0.0;
   // Slow error: exact discretisation of a first-order Gauss-Markov process over the time since the last fix
   // (stationary from the first fix on, so its 1-sigma is position_sigma at every time).
   if (!started_) {
@@ -50,18 +74,28 @@ GpsCompassReading GpsCompass::measure(const VehicleState& s) {
   } else if (cfg_.position_tau <= 0.0) {
     slow_error_ = {cfg_.position_sigma * n_(rng_), cfg_.position_sigma * n_(rng_)};
   } else {
-    const double phi = std::exp(-std::max(0.0, s.t - last_t_) / cfg_.position_tau);
+    const double phi = std::exp(-dt / cfg_.position_tau);
     const double q = cfg_.position_sigma * std::sqrt(1.0 - phi * phi);
     slow_error_ = phi * slow_error_ + Eigen::Vector2d(q * n_(rng_), q * n_(rng_));
   }
   last_t_ = s.t;
+  // A jump steps the error and holds it; an outage silences the receiver. Both start as Poisson events.
+  if (s.t >= jump_until_) jump_.setZero();
+  if (s.t >= jump_until_ && starts(cfg_.jump_interval, dt, u_(rng_))) {
+    jump_ = {cfg_.jump_sigma * n_(rng_), cfg_.jump_sigma * n_(rng_)};
+    jump_until_ = s.t - cfg_.jump_duration * std::log(1.0 - u_(rng_));
+  }
+  if (s.t >= outage_until_ && valid_ && starts(cfg_.outage_interval, dt, u_(rng_)))  // not back to back
+    outage_until_ = s.t + 0.2 + (cfg_.outage_duration - 0.2) * u_(rng_);
+  valid_ = s.t >= outage_until_;
   const Eigen::Vector2d off = rotate2(s.yaw, cfg_.antenna);
   Eigen::Vector3d p(s.position.x() + off.x(), s.position.y() + off.y(), s.position.z() + cfg_.antenna.z());
-  p.x() += slow_error_.x() + cfg_.position_white_sigma * n_(rng_);
-  p.y() += slow_error_.y() + cfg_.position_white_sigma * n_(rng_);
+  p.x() += slow_error_.x() + jump_.x() + cfg_.position_white_sigma * n_(rng_);
+  p.y() += slow_error_.y() + jump_.y() + cfg_.position_white_sigma * n_(rng_);
   p.z() += cfg_.altitude_sigma * n_(rng_);
   GpsCompassReading r;
   r.t = s.t;
+  r.valid = valid_;
   r.fix = frame_.toGeodetic(p);
   r.heading = wrapAngle(s.yaw + cfg_.heading_sigma * n_(rng_));
   // antenna velocity over ground: the vessel's plus the yaw rate acting on the lever arm (r x antenna)
@@ -392,10 +426,17 @@ void Sonar::ping(const VehicleState& s, SonarBeamReading& out) {
 }
 
 // ---------------------------------------------------------------- depth
+const ParamTable<DepthConfig>& DepthConfig::table() {
+  using P = DepthConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("depth/rate", &P::rate_hz, 0.1, 100, "Hz", "pressure readings per second")
+      .number("depth/sigma", &P::sigma_pa, 0, 1e5, "Pa", "pressure noise (100 Pa: 1 cm of water)")
+      .number("depth/water_density", &P::water_density, 900, 1100, "kg/m^3", "1000 fresh water, 1025 at sea");
+  return t;
+}
+
 DepthSensor::DepthSensor(const DepthConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) {
-  requireRate("depth/rate", cfg.rate_hz);
-  requireRange("depth/sigma", cfg.sigma_pa, 0, 1e5);
-  requireRange("depth/water_density", cfg.water_density, 900, 1100);
+  DepthConfig::table().validate(cfg);
 }
 
 DepthReading DepthSensor::measure(const VehicleState& s) {
@@ -406,40 +447,83 @@ DepthReading DepthSensor::measure(const VehicleState& s) {
 double DepthSensor::depthOf(double p) const { return (p - cfg_.atmosphere_pa) / (cfg_.water_density * kGravity); }
 
 // ---------------------------------------------------------------- AHRS
-Ahrs::Ahrs(const AhrsConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) {
-  requireRate("ahrs/rate", cfg.rate_hz);
-  requireRange("ahrs/attitude_sigma", cfg.attitude_sigma, 0, 1);
-  requireRange("ahrs/heading_sigma", cfg.heading_sigma, 0, 1);
-  requireRange("ahrs/gyro_sigma", cfg.gyro_sigma, 0, 1);
-  requireRange("ahrs/accel_sigma", cfg.accel_sigma, 0, 10);
+const ParamTable<AhrsConfig>& AhrsConfig::table() {
+  using P = AhrsConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("ahrs/rate", &P::rate_hz, 0.1, 100, "Hz", "readings per second")
+      .degrees("ahrs/attitude_sigma_deg", &P::attitude_sigma, 0, 45, "roll and pitch noise")
+      .degrees("ahrs/heading_sigma_deg", &P::heading_sigma, 0, 45, "heading noise")
+      .number("ahrs/gyro_sigma", &P::gyro_sigma, 0, 1, "rad/s", "angular rate noise")
+      .number("ahrs/accel_sigma", &P::accel_sigma, 0, 10, "m/s^2", "specific force noise")
+      .degrees("ahrs/heading_bias_sigma_deg", &P::heading_bias_sigma, 0, 45,
+               "heading bias, drawn once per run (calibration residual, the vehicle's own field), 1-sigma")
+      .degrees("ahrs/heading_drift_sigma_deg", &P::heading_drift_sigma, 0, 45,
+               "slow heading drift (first-order Gauss-Markov), 1-sigma")
+      .number("ahrs/heading_drift_tau", &P::heading_drift_tau, 1, 1e6, "s", "the drift's correlation time");
+  return t;
 }
 
+Ahrs::Ahrs(const AhrsConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) { AhrsConfig::table().validate(cfg); }
+
 AhrsReading Ahrs::measure(const VehicleState& s, const Eigen::Vector3d& accel_body) {
+  if (!started_) {
+    bias_ = cfg_.heading_bias_sigma * n_(rng_);
+    drift_ = cfg_.heading_drift_sigma * n_(rng_);  // stationary from the start
+    started_ = true;
+  } else {
+    const double phi = std::exp(-std::max(0.0, s.t - last_t_) / cfg_.heading_drift_tau);
+    drift_ = phi * drift_ + cfg_.heading_drift_sigma * std::sqrt(1.0 - phi * phi) * n_(rng_);
+  }
+  last_t_ = s.t;
   AhrsReading r;
   r.t = s.t;
   r.roll = wrapAngle(s.roll + cfg_.attitude_sigma * n_(rng_));
   r.pitch = wrapAngle(s.pitch + cfg_.attitude_sigma * n_(rng_));
-  r.yaw = wrapAngle(s.yaw + cfg_.heading_sigma * n_(rng_));
+  r.yaw = wrapAngle(s.yaw + bias_ + drift_ + cfg_.heading_sigma * n_(rng_));
   const Eigen::Vector3d noise_w(n_(rng_), n_(rng_), n_(rng_)), noise_a(n_(rng_), n_(rng_), n_(rng_));
   r.angular_rate = s.angular_rate + cfg_.gyro_sigma * noise_w;
   // accelerometers measure acceleration minus gravity (NED gravity is +z)
   r.specific_force = accel_body - bodyToNed(s).transpose() * Eigen::Vector3d(0, 0, kGravity) + cfg_.accel_sigma * noise_a;
   r.attitude_sigma = cfg_.attitude_sigma;
-  r.heading_sigma = cfg_.heading_sigma;
+  r.heading_sigma = std::sqrt(cfg_.heading_bias_sigma * cfg_.heading_bias_sigma +
+                              cfg_.heading_drift_sigma * cfg_.heading_drift_sigma + cfg_.heading_sigma * cfg_.heading_sigma);
   r.gyro_sigma = cfg_.gyro_sigma;
   r.accel_sigma = cfg_.accel_sigma;
   return r;
 }
 
 // ---------------------------------------------------------------- DVL
-Dvl::Dvl(const DvlConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) {
-  requireRate("dvl/rate", cfg.rate_hz);
-  requireRange("dvl/sigma", cfg.velocity_sigma, 0, 10);
+const ParamTable<DvlConfig>& DvlConfig::table() {
+  using P = DvlConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("dvl/rate", &P::rate_hz, 0.1, 100, "Hz", "readings per second")
+      .number("dvl/sigma", &P::velocity_sigma, 0, 10, "m/s", "velocity noise, each axis")
+      .number("dvl/scale_sigma", &P::scale_sigma, 0, 0.5, "", "scale error, drawn once per run, 1-sigma")
+      .degrees("dvl/misalignment_sigma_deg", &P::misalignment_sigma, 0, 45,
+               "mounting misalignment about the vertical, drawn once per run, 1-sigma")
+      .number("dvl/offset_sigma", &P::offset_sigma, 0, 1, "m/s", "velocity offset per axis, drawn once per run, 1-sigma")
+      .number("dvl/min_altitude", &P::min_altitude, 0, 100, "m", "no bottom lock closer to the bottom")
+      .number("dvl/max_altitude", &P::max_altitude, 0.1, 1e4, "m", "no bottom lock farther from the bottom")
+      .number("dvl/bottom_depth", &P::bottom_depth, 0.1, 12000, "m",
+              "the water's depth under the vehicle (the scenario's bottom, when it has one)");
+  return t;
 }
 
-DvlReading Dvl::measure(const VehicleState& s) {
-  const Eigen::Vector3d noise(n_(rng_), n_(rng_), n_(rng_));
-  return {s.t, s.velocity + cfg_.velocity_sigma * noise, cfg_.velocity_sigma};
+Dvl::Dvl(const DvlConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) {
+  DvlConfig::table().validate(cfg);
+  requireRange("dvl/max_altitude", cfg.max_altitude, cfg.min_altitude, 1e4);
+  scale_ = cfg.scale_sigma * n_(rng_);
+  misalignment_ = cfg.misalignment_sigma * n_(rng_);
+  offset_ = cfg.offset_sigma * Eigen::Vector3d(n_(rng_), n_(rng_), n_(rng_));
+}
+
+std::optional<DvlReading> Dvl::measure(const VehicleState& s) {
+  const Eigen::Vector3d noise(n_(rng_), n_(rng_), n_(rng_));  // drawn every sample: the sequence does not depend on lock
+  const double altitude = cfg_.bottom_depth - s.position.z();
+  if (altitude < cfg_.min_altitude || altitude > cfg_.max_altitude) return std::nullopt;
+  const Eigen::Vector3d v = (1.0 + scale_) * (Eigen::AngleAxisd(misalignment_, Eigen::Vector3d::UnitZ()) * s.velocity) +
+                            offset_ + cfg_.velocity_sigma * noise;
+  return DvlReading{s.t, v, cfg_.velocity_sigma, altitude};
 }
 
 // ---------------------------------------------------------------- INS estimate

@@ -153,7 +153,7 @@ const UsvSimulation::Outputs& UsvSimulation::step() {
   // the vessel it reaches the computer over the CAN bus (NMEA 2000), silent too while the bus is off
   if (step_ % gps_every_ == 0) {
     out_.gps = gps_.measure(model_.state());
-    if (cfg_.faults.active("gps", t) || gateway_.bus_off) out_.gps.reset();
+    if (!out_.gps->valid || cfg_.faults.active("gps", t) || gateway_.bus_off) out_.gps.reset();  // valid: no outage
   }
   if (cfg_.lidar_on && step_ % lidar_every_ == 0 && !cfg_.faults.active("lidar", t)) {
     lidar_.scan(model_.state(), scan_);

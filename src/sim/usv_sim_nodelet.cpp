@@ -54,15 +54,7 @@ class UsvSimNodelet : public nodelet::Nodelet {
       const auto lm = p.numbers("lidar/mount", {1.5, 0.0, -1.0}, 3, -50, 50);
       cfg.lidar.mount = {lm[0], lm[1], lm[2]};
       ros_util::readParams(p, sim::LidarSeaConfig::table(), cfg.lidar.sea, "lidar/");
-      cfg.gps.rate_hz = p.number("gps/rate", cfg.gps.rate_hz, 0.1, 100);
-      cfg.gps.position_sigma = p.number("gps/position_sigma", cfg.gps.position_sigma, 0, 100);
-      cfg.gps.position_tau = p.number("gps/position_tau", cfg.gps.position_tau, 0, 1e5);
-      cfg.gps.position_white_sigma = p.number("gps/position_white_sigma", cfg.gps.position_white_sigma, 0, 100);
-      cfg.gps.velocity_sigma = p.number("gps/velocity_sigma", cfg.gps.velocity_sigma, 0, 10);
-      cfg.gps.rate_sigma = deg2rad(p.number("gps/rate_sigma_deg", rad2deg(cfg.gps.rate_sigma), 0, 45));
-      cfg.gps.heading_sigma = deg2rad(p.number("gps/heading_sigma_deg", rad2deg(cfg.gps.heading_sigma), 0, 45));
-      const auto gm = p.numbers("gps/antenna", {0.0, 0.0, -2.5}, 3, -50, 50);
-      cfg.gps.antenna = {gm[0], gm[1], gm[2]};
+      ros_util::readParams(p, sim::GpsCompassConfig::table(), cfg.gps);
       const std::string params = p.text("model_params", "");  // config/models/*.yaml (models module)
       if (!params.empty()) cfg.usv = models::loadUsvParams(params);
       cfg.usv.type = p.choice("model", "dynamic", {"dynamic", "nomoto"}) == "nomoto" ? models::UsvModelType::Nomoto

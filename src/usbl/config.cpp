@@ -26,7 +26,9 @@ const ParamTable<QualityLimits>& qualityLimitsTable() {
       .number("max_pose_wait", &Q::max_pose_wait_s, 0.0, 60, "s",
               "a fix waits this long for the relayed USV pose to reach its time (below max_age)")
       .number("max_depth_error", &Q::max_depth_error_m, 0.01, 1000, "m", "|USBL depth - the AUV's depth sensor| above this: rejected")
-      .number("max_depth_gap", &Q::max_depth_gap_s, 0.01, 10, "s", "a depth sample this close to the fix, else no depth gate");
+      .number("max_depth_gap", &Q::max_depth_gap_s, 0.01, 10, "s", "a depth sample this close to the fix, else no depth gate")
+      .number("water_sound_speed", &Q::water_sound_speed, 0, 1700, "m/s",
+              "the water's measured velocity of sound: ranges from the travel time with it (0: the transceiver's)");
   return t;
 }
 
@@ -39,7 +41,26 @@ const ParamTable<BeaconSimConfig>& beaconSimTable() {
       .number("dropout_probability", &B::dropout_probability, 0, 1, "", "a ping that gets no reply")
       .number("max_range", &B::max_range, 1, 20000, "m", "beyond it every ping times out")
       .number("timeout", &B::timeout, 0.05, 30, "s", "the transceiver's response timeout before PING_ERROR")
-      .number("fit_error", &B::fit_error, 0, 300, "", "the fit error the simulated transceiver reports");
+      .number("fit_error", &B::fit_error, 0, 300, "",
+              "the fit error of a direct arrival at short range with the USV steady (it grows with the angle noise)")
+      .number("sound_speed_error", &B::sound_speed_error, -200, 200, "m/s",
+              "the transceiver's velocity of sound minus the water's: ranges scaled by (c + this) / c")
+      .number("snr_range", &B::snr_range, 1, 1e5, "m",
+              "angle noise grows as sqrt(1 + (range / this)^2): the signal weakens with spreading")
+      .number("motion_time", &B::motion_time, 0, 10, "s",
+              "the USV's rotation over this long blurs the angles (reception, the transceiver's AHRS lag)")
+      .number("fit_error_scatter", &B::fit_error_scatter, 0, 3, "",
+              "lognormal spread of the reported fit error about what the conditions give")
+      .number("multipath_probability", &B::multipath_probability, 0, 1, "",
+              "a reply that came by a reflected path (surface, bottom, a hull): an outlier")
+      .number("multipath_extra_range", &B::multipath_extra_range, 0, 1000, "m",
+              "a reflected path's extra length, mean (exponential)")
+      .degrees("multipath_angle_deg", &B::multipath_angle, 0, 180,
+               "a reflected path's direction error, azimuth and elevation each, 1-sigma")
+      .number("multipath_fit_error", &B::multipath_fit_error, 0, 300, "", "a reflected path's fit error, median")
+      .number("burst_probability", &B::burst_probability, 0, 1, "",
+              "per ping: a burst of dropouts starts (shadowing, the USV's jet bubbles)")
+      .number("burst_pings", &B::burst_pings, 1, 1e4, "", "mean pings a dropout burst lasts (geometric)");
   return t;
 }
 

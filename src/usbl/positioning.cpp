@@ -4,6 +4,7 @@
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/usbl/config.h"
 
 namespace offshore_gnc {
 namespace usbl {
@@ -56,12 +57,8 @@ const char* qualityName(std::uint8_t q) {
 
 Positioner::Positioner(const Mounting& mount, const QualityLimits& limits)
     : mount_(mount), r_body_xcvr_(mount.rotation()), limits_(limits) {
-  requirePositive("max_fit_error", limits.max_fit_error);
-  requirePositive("max_age", limits.max_age_s);
-  requirePositive("max_pose_gap", limits.max_pose_gap_s);
+  qualityLimitsTable().validate(limits);
   requireRange("max_pose_wait", limits.max_pose_wait_s, 0.0, limits.max_age_s);
-  requirePositive("max_depth_error", limits.max_depth_error_m);
-  requirePositive("max_depth_gap", limits.max_depth_gap_s);
 }
 
 bool Positioner::ready(double t_reply, double t_now) const {
@@ -82,7 +79,9 @@ FixResult Positioner::process(const AcoFix& fix, double t_reply, double t_now) {
   const auto att = usv_att_.at(t_reply, limits_.max_pose_gap_s,
                                [](const Eigen::Quaterniond& a, const Eigen::Quaterniond& b, double s) { return a.slerp(s, b); });
   if (geometric && pos && att) {
-    const Eigen::Vector3d v = fromRangeAngles(fix.rangeM(), fix.azimuthRad(), fix.elevationRad());
+    const bool timed = limits_.water_sound_speed > 0.0 && std::isfinite(travel) && travel > 0.0 && travel < 10.0;
+    const double range = timed ? travel * limits_.water_sound_speed : fix.rangeM();
+    const Eigen::Vector3d v = fromRangeAngles(range, fix.azimuthRad(), fix.elevationRad());
     r.ned = *pos + *att * (mount_.offset + r_body_xcvr_ * v);
   }
 

@@ -126,7 +126,8 @@ def test_auv_tracking_counted_from_the_first_waypoint(tmp_path):
 
 def test_auv_navigation_error_and_usbl_fixes(tmp_path):
     """The AUV's navigation figures: its estimate (/auv/odom) against the truth interpolated at the estimate's
-    stamps (estimates outside the truth's span skipped), and the USBL fixes received and rejected."""
+    stamps (estimates outside the truth's span skipped), and the USBL fixes received and rejected: by a quality gate
+    or the navigation filter's, and whether each was an outlier (farther than 3 m from the truth at its stamp)."""
     import rosbag
     import rospy
     from nav_msgs.msg import Odometry
@@ -151,27 +152,36 @@ def test_auv_navigation_error_and_usbl_fixes(tmp_path):
         est = [(99.5, -0.5 + 3.0)] + [(100.0 + 0.25 * k, 0.25 * k) for k in range(41)] + [(110.5, 10.5 + 3.0)]
         for t, north in est:
             b.write("/auv/odom", odom(t, north, 0.5), rospy.Time.from_sec(t))
+        # fixes 0.3 m east of the truth, but the fit-error one 6 m east and the last 8 m east (the filter's gate
+        # refused it: it comes on /auv/navigation/refused_fixes as well)
         for k, quality in enumerate([UsblFix.QUALITY_OK, UsblFix.QUALITY_FIT_ERROR, UsblFix.QUALITY_OK,
-                                     UsblFix.QUALITY_STALE, UsblFix.QUALITY_OK]):
-            f = UsblFix(quality=quality)
-            f.header.stamp = rospy.Time(101 + 2 * k)
-            f.position_ned.x, f.position_ned.y, f.position_ned.z = 1.0 + 2 * k, 0.3, 5.0
+                                     UsblFix.QUALITY_STALE, UsblFix.QUALITY_OK, UsblFix.QUALITY_OK]):
+            f = UsblFix(quality=quality, range=20.0 + k)
+            f.header.stamp = rospy.Time(min(101 + 2 * k, 110))
+            f.position_ned.x, f.position_ned.y, f.position_ned.z = min(1.0 + 2 * k, 10.0), {1: 6.0, 5: 8.0}.get(k, 0.3), 5.0
             f.latitude = f.longitude = float("nan")
             b.write("/auv/usbl/fix", f, f.header.stamp)
+            if k == 5:
+                b.write("/auv/navigation/refused_fixes", f, f.header.stamp)
     out = tmp_path / "report"
     m = report.build(None, auv_bag, None, str(out))
     assert m["auv_nav_source"] == "usbl"
     assert m["auv_nav_samples"] == 41
     assert m["auv_nav_rmse_m"] == pytest.approx(0.5, abs=1e-9)
     assert m["auv_nav_max_m"] == pytest.approx(0.5, abs=1e-9)
-    assert m["usbl_fixes_received"] == 5
-    assert m["usbl_fixes_rejected"] == 2
+    assert m["usbl_fixes_received"] == 6
+    assert m["usbl_fixes_rejected"] == 3
+    assert m["usbl_rejected_by"] == {"fit_error": 1, "stale": 1, "gated": 1}
+    assert m["usbl_outliers"] == 2 and m["usbl_rejected_outliers"] == 2 and m["usbl_outliers_accepted"] == 0
     saved = json.load(open(out / "metrics.json"))
-    assert saved["auv_nav_rmse_m"] == pytest.approx(0.5) and saved["usbl_fixes_rejected"] == 2
+    assert saved["auv_nav_rmse_m"] == pytest.approx(0.5) and saved["usbl_fixes_rejected"] == 3
     summary = (out / "summary.md").read_text()
     assert "| AUV navigation error, horizontal (estimate vs truth; usbl) | RMSE 0.500 m, max 0.500 m | |" in summary
-    assert "| USBL fixes | 5 received, 2 rejected | |" in summary
-    assert (out / "map.png").stat().st_size > 0
+    assert "| USBL fixes | 6 received, 3 rejected (fit_error 1, gated 1, stale 1) | |" in summary
+    assert m["usbl_rejected_by_gates"] == 2 and m["usbl_rejected_by_gates_outliers"] == 2
+    assert "| USBL outliers (> 3 m from the truth) | 2, of them rejected 2; rejected by the outlier gates (fit error, " \
+        "depth, the filter's) 2, of them outliers 2, without a position 0 | |" in summary
+    assert (out / "map.png").stat().st_size > 0 and (out / "navigation.png").stat().st_size > 0
 
     # only rejected fixes and no estimate: the INS, nothing to compare (unknown, not zero)
     ins_bag = str(tmp_path / "ins.bag")

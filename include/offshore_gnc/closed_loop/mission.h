@@ -6,7 +6,7 @@
 // (metrics over the same samples: guidance's cross-track error in path following; the AUV's from the first
 // waypoint reached and on the truth, as the report's auv_xte_true_rmse_m). The AUV navigates as in the ROS mission: on USBL
 // fixes placed by the USV's GPS and heading relayed over the radio (closed_loop/usbl_navigation.h); the radio
-// delays what crosses it and loses best-effort messages as configured.
+// (sim/radio.h, the main job's model and parameters) delays what crosses it and loses best-effort messages.
 #include <Eigen/Core>
 
 #include <array>
@@ -18,6 +18,7 @@
 #include "offshore_gnc/closed_loop/outcome.h"
 #include "offshore_gnc/closed_loop/stacks.h"
 #include "offshore_gnc/guidance/metrics.h"
+#include "offshore_gnc/sim/radio.h"
 #include "offshore_gnc/sim/scenario.h"
 
 namespace offshore_gnc {
@@ -28,9 +29,8 @@ struct MissionConfig {
   sim::Scenario scenario;
   UsvStackConfig usv;
   AuvStackConfig auv;
-  double relay_latency = 0.1;             // the radio between the masters: every message this late [s]
-  double relay_loss = 0.0;                // and best-effort ones (GPS, heading) lost with this probability
-  unsigned relay_seed = 1;
+  sim::RadioParams radio;                 // the radio between the masters (config/relay/radio.yaml, as the main job's)
+  std::uint64_t radio_seed = 1;
   // The main job's own faults, between the vehicles (offshore_gnc::faultKinds() "both"): `link` takes the radio
   // down, `geofence` hands the USV a target 5 km north of the origin as if the AUV had sent it.
   FaultPlan link_faults;
@@ -39,8 +39,8 @@ struct MissionConfig {
   std::string kill;  // "", "usv" or "auv"
   double kill_at = 0.0, after_kill = 60.0;
 };
-// The scenario (its mission section says how a run is judged) and the vehicles' configuration files under
-// config_dir.
+// The scenario (its mission section says how a run is judged), the vehicles' configuration files under config_dir
+// and the radio between them (config_dir/relay/radio.yaml).
 MissionConfig loadMission(const std::string& config_dir, const std::string& scenario_file,
                           const std::string& auv_model = "girona500");
 

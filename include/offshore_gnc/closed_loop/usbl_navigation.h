@@ -10,8 +10,8 @@
 
 #include <cmath>
 #include <deque>
+#include <map>
 #include <optional>
-#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +22,7 @@
 #include "offshore_gnc/models/state.h"
 #include "offshore_gnc/navigation/auv_navigation_params.h"
 #include "offshore_gnc/navigation/auv_navigator.h"
+#include "offshore_gnc/sim/radio.h"
 #include "offshore_gnc/usbl/beacon_sim.h"
 #include "offshore_gnc/usbl/positioning.h"
 #include "offshore_gnc/usbl/session.h"
@@ -100,38 +101,42 @@ class UsblNavigation {
   Eigen::Vector2d rate_pq_ = Eigen::Vector2d::Zero();
 };
 
-// The radio between the two masters, as the relay meets it: each message delivered `latency` seconds after it was
-// sent, best-effort ones lost with probability `loss` (seeded), reliable ones (the relay's queue) never. While the
-// link is down (the `link` fault) nothing arrives; best-effort messages are lost, reliable ones wait for it.
+// The radio between the two masters, as the relay meets it (sim::RadioChannel: the main job's simulated radio,
+// from the same parameters): each message arrives after its time on the channel, the latency and a jitter;
+// best-effort ones (the relay's datagrams) are lost in runs, reliable ones (its queue over TCP) come late
+// instead. While the link is down (the `link` fault) nothing arrives; best-effort messages are lost, reliable
+// ones wait for it.
 template <class T>
 class RadioLink {
  public:
-  RadioLink(double latency, double loss, unsigned seed) : latency_(latency), loss_(loss), rng_(seed) {}
+  RadioLink(const sim::RadioParams& p, std::uint64_t seed) : channel_(p, seed) {}
   void setUp(bool up) { up_ = up; }
   bool up() const { return up_; }
-  void send(double t, const T& m, bool reliable) {
-    if (!reliable && (!up_ || std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < loss_)) {
+  // `bytes`: the message's size as the relay frames it.
+  void send(double t, const T& m, std::size_t bytes, bool reliable) {
+    const std::optional<double> due = reliable || up_ ? channel_.schedule(t, bytes, reliable) : std::nullopt;
+    if (!due) {
       ++lost_;
       return;
     }
-    queue_.emplace_back(t + latency_, m);
+    queue_.emplace(*due, m);
   }
-  // Messages due by t, oldest first.
+  // Messages due by t, in the order they arrive.
   std::vector<T> receive(double t) {
     std::vector<T> out;
-    while (up_ && !queue_.empty() && queue_.front().first <= t) {
-      out.push_back(std::move(queue_.front().second));
-      queue_.pop_front();
+    while (up_ && !queue_.empty() && queue_.begin()->first <= t) {
+      out.push_back(std::move(queue_.begin()->second));
+      queue_.erase(queue_.begin());
     }
     return out;
   }
   std::size_t lost() const { return lost_; }
+  const sim::RadioChannel& channel() const { return channel_; }
 
  private:
-  double latency_, loss_;
+  sim::RadioChannel channel_;
   bool up_ = true;
-  std::mt19937 rng_;
-  std::deque<std::pair<double, T>> queue_;
+  std::multimap<double, T> queue_;  // by arrival time (datagrams may overtake each other by their jitter)
   std::size_t lost_ = 0;
 };
 

@@ -6,9 +6,11 @@
 // back to the fix's stamp, applies it and replays what came later. Velocity from the DVL (Girona500) or, without
 // one (aColor), from the commanded surge, which gives the velocity through the water: the current (a slowly
 // varying state the fixes reveal) makes it the velocity over ground. Depth from the pressure sensor; yaw from the
-// AHRS, taken as known. ROS-free; a nodelet wraps it.
+// AHRS, less a heading bias the filter estimates (a magnetic compass is off by a degree or more: the DVL's or the
+// commands' velocity then points that far off, and the fixes show the drift it causes). ROS-free; a nodelet wraps it.
 #include <Eigen/Dense>
 
+#include <array>
 #include <deque>
 
 #include "offshore_gnc/common/counters.h"
@@ -23,7 +25,11 @@ struct AuvNavigatorConfig {
   double heading_timeout = 1.0;       // no heading for longer: kNoHeading, DVL and commands unusable [s]
   double dvl_timeout = 1.0;           // no DVL sample for longer: the commanded-speed model takes over [s]
   double gate_chi2 = 16.27;           // Mahalanobis gate on fixes (chi-square, 3 dof, 99.9 %)
-  int max_rejects_in_row = 5;         // after this many gated fixes in a row the next gated one re-initialises
+  int max_rejects_in_row = 5;         // after this many gated fixes in a row the next gated one re-initialises,
+                                      // when they agree with each other (an outlier streak does not)
+  int confirm_fixes = 2;              // a start is confirmed when this many fixes agree with it; before that the
+                                      // second gated fix in a row re-initialises, if the two agree (a first fix
+                                      // that was an outlier)
   double accel_psd_h = 0.05;          // white-acceleration spectral density, north and east [m^2/s^3]
   double accel_psd_v = 0.01;          // the same, down [m^2/s^3]
   double position_psd = 0.01;         // horizontal position random walk: unmodelled DVL/heading errors [m^2/s]
@@ -33,6 +39,8 @@ struct AuvNavigatorConfig {
   double current_sigma = 0.3;         // the water current: its standard deviation (first-order Markov) [m/s]
   double current_tau = 3600.0;        // and its correlation time [s]
   double init_velocity_sigma = 1.0;   // velocity uncertainty at (re-)initialisation [m/s]
+  double heading_bias_sigma = 0.035;  // the AHRS heading's bias: standard deviation (first-order Markov) [rad]
+  double heading_bias_tau = 1800.0;   // and its correlation time [s]
   static const ParamTable<AuvNavigatorConfig>& table();
 };
 
@@ -45,7 +53,9 @@ enum class NavStatus {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
-constexpr int kNavStates = 8;  // position (3), velocity over ground (3), horizontal current (2)
+// position (3), velocity over ground (3), horizontal current (2), AHRS heading bias (1)
+constexpr int kNavStates = 9;
+constexpr int kPos = 0, kVel = 3, kCur = 6, kBias = 8;
 using NavVector = Eigen::Matrix<double, kNavStates, 1>;
 using NavMatrix = Eigen::Matrix<double, kNavStates, kNavStates>;
 
@@ -53,7 +63,8 @@ struct AuvNavEstimate {
   double t = 0.0;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // NED [m]
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // NED [m/s]
-  double yaw = 0.0, yaw_rate = 0.0;                    // from the AHRS [rad], [rad/s]
+  double yaw = 0.0, yaw_rate = 0.0;                    // the AHRS's less its estimated bias [rad], [rad/s]
+  double heading_bias = 0.0, heading_bias_sigma = 0.0; // the AHRS heading's estimated bias, its sigma [rad]
   Matrix6d covariance = Matrix6d::Identity();          // of [position; velocity]
   Eigen::Vector2d current = Eigen::Vector2d::Zero();   // water current, north and east [m/s]
   Eigen::Matrix2d current_covariance = Eigen::Matrix2d::Identity();
@@ -76,8 +87,9 @@ class AuvNavigator {
   // The estimate at t (extrapolated from the latest state, or from the history for an earlier t); const.
   AuvNavEstimate estimate(double t) const;
 
-  // "fix_accepted", "fix_rejected_gate", "fix_too_old", "bad_input", "reinit", "time_reset",
-  // "velocity_without_heading". Each input is counted once, when it arrives, not again when replayed.
+  // "fix_accepted", "fix_rejected_gate", "fix_too_old", "bad_input", "reinit", "reinit_refused_scattered" (a
+  // streak of gated fixes that did not agree with each other), "reinit_unconfirmed" (of the re-initialisations,
+  // those of a start not yet confirmed), "time_reset", "velocity_without_heading". Each input is counted once, when it arrives, not again when replayed.
   const Counters& counters() const { return counters_; }
   const AuvNavigatorConfig& config() const { return cfg_; }
 
@@ -90,6 +102,10 @@ class AuvNavigator {
     double yaw = 0.0, yaw_rate = 0.0;
     double heading_t = -1e300, dvl_t = -1e300, fix_t = -1e300;
     int rejects_in_row = 0;
+    int agreeing = 0;  // fixes accepted since the latest (re-)initialisation, that one included
+    // The innovations of the latest gated fixes in a row (ring by rejects_in_row) and their variance: a
+    // re-initialisation needs them to agree, i.e. the estimate is off, not the fixes scattered.
+    std::array<Eigen::Vector4d, 8> streak{};
   };
   enum class Kind { kFix, kDepth, kHeading, kDvl, kCommand, kPredict };
   struct Input {
@@ -108,6 +124,7 @@ class AuvNavigator {
   bool apply(Filter& f, const Input& in, bool first);
   bool applyFix(Filter& f, const Input& in, bool first);
   void propagate(Filter& f, double t) const;
+  bool streakAgrees(const Filter& f, int n) const;
   template <int M>
   void update(Filter& f, const Eigen::Matrix<double, M, kNavStates>& H, const Eigen::Matrix<double, M, 1>& innovation,
               const Eigen::Matrix<double, M, M>& R) const;

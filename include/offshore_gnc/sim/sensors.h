@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -28,6 +29,9 @@ Eigen::Isometry3d sensorMount(const Eigen::Vector3d& mount_frd, double yaw_frd, 
 // a little receiver jitter on top, so it is a first-order Gauss-Markov process plus white noise, not white noise
 // alone (white 0.3 m at 10 Hz would make any speed from differenced fixes useless). Like the real receiver it also
 // reports Doppler speed over ground and the rate of turn of its gyro, which the navigation uses directly.
+// Beyond that slow error the fix jumps now and then (a satellite or its SBAS correction entering or leaving the
+// solution, a reflection off a passing hull: the error steps and holds for a while) and the receiver loses its
+// fix for a moment now and then (it then reports nothing: heading too, which comes from the same antennas).
 struct GpsCompassConfig {
   double rate_hz = 10.0;
   double position_sigma = 0.3;          // slow horizontal error, 1-sigma [m]
@@ -38,6 +42,12 @@ struct GpsCompassConfig {
   double velocity_sigma = 0.05;         // Doppler speed over ground, per axis [m/s]
   double rate_sigma = deg2rad(0.3);     // rate of turn [rad/s]
   Eigen::Vector3d antenna{0, 0, -2.5};  // antenna in body FRD [m]
+  double jump_interval = 120.0;         // mean time between jumps (Poisson) [s]; 0: none
+  double jump_sigma = 0.3;              // a jump's offset, each horizontal axis, 1-sigma [m]
+  double jump_duration = 10.0;          // mean time a jump holds (exponential) [s]
+  double outage_interval = 600.0;       // mean time between outages (Poisson) [s]; 0: none
+  double outage_duration = 2.0;         // an outage lasts uniformly 0.2 s .. this [s]
+  static const ParamTable<GpsCompassConfig>& table();  // names as the UsvSim nodelet reads them (gps/...)
 };
 struct GpsCompassReading {
   double t;
@@ -46,21 +56,28 @@ struct GpsCompassReading {
   Eigen::Vector2d velocity_ned;  // the antenna's velocity over ground, NED [m/s]
   double rate_of_turn;           // NED yaw rate [rad/s]
   double position_sigma, heading_sigma, velocity_sigma;
+  bool valid = true;             // false in an outage: the receiver reports nothing (the simulations drop it)
 };
 class GpsCompass {
  public:
   GpsCompass(const GpsCompassConfig& cfg, const geo::LocalNed& frame, std::uint64_t seed);
   GpsCompassReading measure(const VehicleState& s);
   const GpsCompassConfig& config() const { return cfg_; }
+  // The jump offset in force at the last reading (NED north, east) [m]: zero between jumps.
+  const Eigen::Vector2d& jump() const { return jump_; }
 
  private:
   GpsCompassConfig cfg_;
   geo::LocalNed frame_;
   std::mt19937_64 rng_;
   Eigen::Vector2d slow_error_ = Eigen::Vector2d::Zero();  // the Gauss-Markov part of the position error
+  Eigen::Vector2d jump_ = Eigen::Vector2d::Zero();
+  double jump_until_ = -1.0, outage_until_ = -1.0;
+  bool valid_ = true;  // the last reading was (no outage)
   double last_t_ = 0.0;
   bool started_ = false;
   std::normal_distribution<double> n_{0.0, 1.0};
+  std::uniform_real_distribution<double> u_{0.0, 1.0};
 };
 
 // ---------------------------------------------------------------- LiDAR (SICK MRS1000-like)
@@ -211,6 +228,7 @@ struct DepthConfig {
   double sigma_pa = 20.0;          // ~2 mm of water
   double atmosphere_pa = 101325.0;
   double water_density = 1000.0;   // fresh water (Pyhäjärvi); 1025 at sea
+  static const ParamTable<DepthConfig>& table();  // depth/...
 };
 struct DepthReading {
   double t, pressure_pa, sigma_pa;
@@ -228,12 +246,20 @@ class DepthSensor {
   std::normal_distribution<double> n_{0.0, 1.0};
 };
 
+// A MEMS AHRS with a magnetometer (e.g. an Xsens MTi-300 class unit: roll and pitch 0.2 deg, heading 1 deg RMS in
+// its data sheet). Its heading error is not only white: a bias fixed for the run (the residual of the hard- and
+// soft-iron calibration, the vehicle's own field) and a slow drift (first-order Gauss-Markov: thruster currents,
+// temperature) come on top of the noise; together about the data sheet's 1 deg RMS.
 struct AhrsConfig {
   double rate_hz = 50.0;
   double attitude_sigma = deg2rad(0.2);  // roll, pitch [rad]
   double heading_sigma = deg2rad(0.5);  // yaw [rad] (magnetic compass)
   double gyro_sigma = 0.002;       // [rad/s]
   double accel_sigma = 0.02;       // [m/s^2]
+  double heading_bias_sigma = deg2rad(0.7);   // the run's heading bias, drawn once, 1-sigma [rad]
+  double heading_drift_sigma = deg2rad(0.5);  // the slow heading drift, 1-sigma [rad]
+  double heading_drift_tau = 300.0;           // its correlation time [s]
+  static const ParamTable<AhrsConfig>& table();  // ahrs/...
 };
 struct AhrsReading {
   double t;
@@ -248,36 +274,56 @@ class Ahrs {
   // `accel_body` is the body-frame linear acceleration of the vehicle (from the model, or finite differences).
   AhrsReading measure(const VehicleState& s, const Eigen::Vector3d& accel_body);
   const AhrsConfig& config() const { return cfg_; }
+  double headingError() const { return bias_ + drift_; }  // bias + drift at the last reading [rad]
 
  private:
   AhrsConfig cfg_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> n_{0.0, 1.0};
+  double bias_ = 0.0, drift_ = 0.0, last_t_ = 0.0;
+  bool started_ = false;
 };
 
 // ---------------------------------------------------------------- DVL (Girona500)
-// A Doppler velocity log in bottom lock: the vehicle's velocity over ground in its body frame (FRD), white
-// Gaussian noise per axis. Mounted at the body origin (no lever arm); the simulated lake has no seabed model,
-// so bottom lock is never lost.
+// A Doppler velocity log in bottom lock: the vehicle's velocity over ground in its body frame (FRD). Mounted at the
+// body origin (no lever arm). Beyond its white noise it has the errors a data sheet's long-term accuracy covers,
+// each fixed for the run: a scale error (sound speed at the transducer, beam angles), a misalignment about the
+// vertical (how well it was mounted) and a small offset per axis. It locks on the bottom only between its minimum
+// and maximum altitude (Nortek DVL1000 class: about 75 m); outside that it reports nothing. The water's depth
+// under the vehicle is `bottom_depth`, one value until the scenario has a bottom (then it feeds this parameter).
 struct DvlConfig {
   double rate_hz = 5.0;
-  double velocity_sigma = 0.02;  // per axis [m/s]
+  double velocity_sigma = 0.02;                // per axis [m/s]
+  double scale_sigma = 0.002;                  // scale error, drawn once, 1-sigma [-]
+  double misalignment_sigma = deg2rad(0.5);    // misalignment about z, drawn once, 1-sigma [rad]
+  double offset_sigma = 0.001;                 // offset per axis, drawn once, 1-sigma [m/s]
+  double min_altitude = 0.3, max_altitude = 75.0;  // bottom lock between these altitudes [m]
+  double bottom_depth = 10.0;                  // the water's depth under the vehicle [m]
+  static const ParamTable<DvlConfig>& table();  // dvl/...
 };
 struct DvlReading {
   double t;
   Eigen::Vector3d velocity;  // over ground, body FRD [m/s]
   double velocity_sigma;     // [m/s]
+  double altitude;           // above the bottom [m]
 };
 class Dvl {
  public:
   Dvl(const DvlConfig& cfg, std::uint64_t seed);
-  DvlReading measure(const VehicleState& s);
+  // Nothing without bottom lock (above max_altitude, below min_altitude).
+  std::optional<DvlReading> measure(const VehicleState& s);
   const DvlConfig& config() const { return cfg_; }
+  // The run's bias: the reading is (1 + scale) R_z(misalignment) v + offset + noise.
+  double scale() const { return scale_; }
+  double misalignment() const { return misalignment_; }
+  const Eigen::Vector3d& offset() const { return offset_; }
 
  private:
   DvlConfig cfg_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> n_{0.0, 1.0};
+  double scale_, misalignment_;
+  Eigen::Vector3d offset_;
 };
 
 // ---------------------------------------------------------------- AUV navigation estimate (simulation only)

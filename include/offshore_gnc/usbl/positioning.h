@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <deque>
+#include <iterator>
 #include <optional>
 #include <utility>
 
@@ -44,8 +45,20 @@ template <typename T>
 class TimedBuffer {
  public:
   explicit TimedBuffer(double horizon_s = 30.0) : horizon_(horizon_s) {}
+  // A sample older than the newest is put in its place: relayed datagrams can come out of order. One older by
+  // more than kTimeReset is the clock having gone back (a bag loop, a simulation reset): the buffer starts again.
   void add(double t, const T& v) {
-    if (!samples_.empty() && t < samples_.back().first) samples_.clear();  // time jumped back (bag loop, sim reset)
+    static constexpr double kTimeReset = 5.0;  // [s]
+    if (!samples_.empty() && t < samples_.back().first) {
+      if (t < samples_.back().first - kTimeReset) {
+        samples_.clear();
+      } else {
+        auto it = samples_.end();
+        while (it != samples_.begin() && std::prev(it)->first > t) --it;
+        samples_.emplace(it, t, v);
+        return;
+      }
+    }
     samples_.emplace_back(t, v);
     while (samples_.size() > 2 && samples_.front().first < t - horizon_) samples_.pop_front();
   }
@@ -85,6 +98,10 @@ struct QualityLimits {
                                    // (they come over the relay, later than the reply); below max_age_s
   double max_depth_error_m = 3.0;  // |USBL depth - depth sensor|
   double max_depth_gap_s = 1.0;    // depth sensor sample this close to the fix time, else the gate is skipped
+  // The water's velocity of sound (measured: a sound velocity probe or profile) [m/s]: the range is the travel time
+  // times it, not the transceiver's (computed with its own velocity of sound, from its temperature sensor and a
+  // salinity setting, which is off by several m/s in a layered lake). 0: the transceiver's range as reported.
+  double water_sound_speed = 0.0;
 };
 
 // Quality codes: the same values as offshore_gnc/UsblFix QUALITY_*.

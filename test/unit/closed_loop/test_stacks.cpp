@@ -95,8 +95,8 @@ TEST(RosFreeMission, TheDefaultMissionSucceedsInOneProcess) {
 // navigates within a metre and the target crosses (reliable: delayed, never lost).
 TEST(RosFreeMission, ALateLossyRadioStillPlacesTheFixes) {
   MissionConfig cfg = loadMission("config", "config/scenarios/pyhajarvi.yaml");
-  cfg.relay_latency = 0.5;
-  cfg.relay_loss = 0.33;
+  cfg.radio.latency = 0.5;
+  cfg.radio.loss = 0.33;
   const MissionResult r = runMission(cfg);
   EXPECT_TRUE(r.success) << toString(r.outcome) << ": " << r.reason;
   EXPECT_GT(r.relay_lost, 1000u);

@@ -35,6 +35,8 @@ struct TrackSim {
   std::function<double(double)> depth = [](double) { return 5.0; };
   std::function<bool(double)> fixes_on = [](double) { return true; };
   double fix_sigma = 1.0, fix_period = 2.0, fix_latency = 1.0;
+  double outlier_probability = 0.0;  // a fix off by 5..15 m in a random direction (a reflected acoustic path)
+  int outliers = 0;
   double dvl_sigma = 0.02, heading_sigma = 0.0, heading_bias = 0.0, depth_sigma = 0.05;
   bool use_dvl = true;
   double cmd_surge = 1.0;  // commanded surge (no DVL)
@@ -73,8 +75,15 @@ struct TrackSim {
       if (!use_dvl && k % 10 == 0) nav.commandedSpeed(t, cmd_surge);
       if (k % 50 == 0) nav.depth(t, truth.p.z() + gauss(depth_sigma));
       const long fp = std::lround(fix_period * 100.0);
-      if (k % fp == 0 && fixes_on(t))
-        pending.push_back({t, truth.p + Eigen::Vector3d(gauss(fix_sigma), gauss(fix_sigma), gauss(fix_sigma))});
+      if (k % fp == 0 && fixes_on(t)) {
+        Eigen::Vector3d m = truth.p + Eigen::Vector3d(gauss(fix_sigma), gauss(fix_sigma), gauss(fix_sigma));
+        if (std::uniform_real_distribution<double>(0, 1)(rng) < outlier_probability) {
+          const Eigen::Vector3d dir = Eigen::Vector3d(gauss(1), gauss(1), gauss(1)).normalized();
+          m += dir * std::uniform_real_distribution<double>(5, 15)(rng);
+          ++outliers;
+        }
+        pending.push_back({t, m});
+      }
       while (!pending.empty() && pending.front().first + fix_latency <= t + 1e-9) {
         nav.usblFix(pending.front().first, pending.front().second, kI3 * fix_sigma * fix_sigma);
         pending.erase(pending.begin());
@@ -163,6 +172,87 @@ TEST(AuvNavigator, GateRejectsOutlierAndReinitialisesAfterConsistentFixes) {
   EXPECT_EQ(nav.estimate(60.0).status, NavStatus::kOk);
 }
 
+// 2b. Outliers among the fixes (10 %, 5-15 m off: the simulated pair's reflected paths) are gated one by one and
+// cost the estimate little; they never re-initialise it.
+TEST(AuvNavigator, ScatteredOutliersAreGatedWithoutReinitialising) {
+  AuvNavigator clean_nav, nav;
+  TrackSim clean, dirty;
+  clean.fix_sigma = dirty.fix_sigma = 0.7;
+  dirty.outlier_probability = 0.1;
+  clean.yaw_rate = dirty.yaw_rate = [](double t) { return 0.1 * std::sin(0.05 * t); };
+  clean.run(clean_nav, 1200.0);
+  dirty.run(nav, 1200.0);
+  ASSERT_GT(dirty.outliers, 40);  // about 60
+  std::printf("outliers: %d, gated %llu; RMSE %.3f m, without outliers %.3f m\n", dirty.outliers,
+              static_cast<unsigned long long>(nav.counters().get("fix_rejected_gate")), dirty.rmse(), clean.rmse());
+  const auto& c = nav.counters();
+  EXPECT_EQ(c.get("reinit"), 0u);
+  // every outlier is gated (the smallest, 5 m, is 4.7 sigma of a fix off), and hardly any good fix
+  EXPECT_GE(c.get("fix_rejected_gate"), static_cast<std::uint64_t>(dirty.outliers));
+  EXPECT_LE(c.get("fix_rejected_gate"), static_cast<std::uint64_t>(dirty.outliers) + 3);
+  EXPECT_LT(dirty.rmse(), 1.2 * clean.rmse() + 0.05) << clean.rmse();
+}
+
+// 2b'. The very first fix an outlier (it happened: a reflected path 9 m off, then every good fix gated until the
+// re-initialisation 12 s later): a start no fix has agreed with yet is left on the second gated fix in a row when
+// the two agree, 4 s after it. An outlier as the second fix is gated as any other, the start kept.
+TEST(AuvNavigator, AnOutlierAsTheFirstFixIsLeftAtTheNextTwo) {
+  for (const bool dvl : {true, false}) {
+    AuvNavigator nav;
+    TrackSim sim;
+    sim.use_dvl = dvl;
+    sim.fix_sigma = 0.5;
+    sim.fix_latency = 0.0;
+    sim.fixes_on = [](double t) { return t > 0.5; };  // the outlier comes instead of the fix at 0
+    nav.heading(0.0, 0.0, 0.0);
+    EXPECT_TRUE(nav.usblFix(0.0, Eigen::Vector3d(-7.0, -5.3, 5.0), kI3 * 0.25));  // the start
+    double worst_after = 0.0;
+    sim.run(nav, 30.0, [&](const Truth& tr, const AuvNavEstimate& e) {
+      if (tr.t > 4.05) worst_after = std::max(worst_after, (e.position - tr.p).norm());
+    });
+    EXPECT_EQ(nav.counters().get("fix_rejected_gate"), 1u) << dvl;  // the fix at 2
+    EXPECT_EQ(nav.counters().get("reinit"), 1u);                     // at 4, on the fixes at 2 and 4
+    EXPECT_EQ(nav.counters().get("reinit_unconfirmed"), 1u);
+    EXPECT_LT(worst_after, 1.5) << dvl;
+    EXPECT_EQ(nav.estimate(30.0).status, NavStatus::kOk);
+  }
+  AuvNavigator nav;
+  TrackSim sim;
+  sim.fix_sigma = 0.5;
+  sim.fix_latency = 0.0;
+  sim.fixes_on = [](double t) { return t < 1.0 || t > 2.5; };  // the outlier comes instead of the fix at 2
+  double worst = 0.0;
+  sim.run(nav, 2.0);
+  EXPECT_FALSE(nav.usblFix(2.0, sim.truth.p + Eigen::Vector3d(7.0, -5.3, 0.0), kI3 * 0.25));
+  sim.run(nav, 30.0, [&](const Truth& tr, const AuvNavEstimate& e) { worst = std::max(worst, (e.position - tr.p).norm()); });
+  EXPECT_EQ(nav.counters().get("fix_rejected_gate"), 1u);
+  EXPECT_EQ(nav.counters().get("reinit"), 0u);
+  EXPECT_LT(worst, 1.5);
+}
+
+// 2c. A streak of gated fixes that scatter (outliers, not a moved vehicle) does not re-initialise the filter even
+// past max_rejects_in_row; the good fixes after it are accepted again.
+TEST(AuvNavigator, AScatteredStreakOfOutliersDoesNotReinitialise) {
+  AuvNavigator nav;
+  TrackSim sim;
+  sim.fix_sigma = 0.5;
+  sim.fix_latency = 0.0;
+  sim.run(nav, 20.0);
+  const AuvNavEstimate before = nav.estimate(20.0);
+  for (int i = 0; i < 8; ++i) {  // 8 in a row, 10 m off in turning directions
+    const double a = i * 2.3;
+    EXPECT_FALSE(nav.usblFix(19.0 + 0.1 * i, before.position + 10.0 * Eigen::Vector3d(std::cos(a), std::sin(a), 0),
+                             kI3 * 0.25));
+  }
+  EXPECT_EQ(nav.counters().get("fix_rejected_gate"), 8u);
+  EXPECT_EQ(nav.counters().get("reinit"), 0u);
+  EXPECT_EQ(nav.counters().get("reinit_refused_scattered"), 3u);  // the 6th, 7th and 8th
+  const std::uint64_t accepted = nav.counters().get("fix_accepted");
+  sim.run(nav, 40.0);
+  EXPECT_EQ(nav.counters().get("fix_accepted"), accepted + 10);
+  EXPECT_LT((nav.estimate(40.0).position - sim.truth.p).norm(), 1.0);
+}
+
 // 3. Yaw crossing +pi -> -pi with the DVL measuring 1 m/s forward: the NED velocity turns smoothly.
 TEST(AuvNavigator, HeadingWrapKeepsVelocityContinuous) {
   AuvNavigator nav;
@@ -180,7 +270,7 @@ TEST(AuvNavigator, HeadingWrapKeepsVelocityContinuous) {
     if (t >= 1.0) {
       max_step = std::max(max_step, (e.velocity - last).norm());
       max_err = std::max(max_err, (e.velocity.head<2>() - Eigen::Vector2d(std::cos(yaw_d), std::sin(yaw_d))).norm());
-      EXPECT_LT(std::abs(angleDiff(e.yaw, yaw_d)), 1e-9);
+      EXPECT_LT(std::abs(angleDiff(e.yaw, yaw_d)), 1e-4);  // the AHRS's, less the bias estimate (nil here)
       EXPECT_GT(e.yaw, -kPi);
       EXPECT_LE(e.yaw, kPi);
       crossed = crossed || yaw < 0;
@@ -194,8 +284,8 @@ TEST(AuvNavigator, HeadingWrapKeepsVelocityContinuous) {
 }
 
 // 4. 60 s without fixes: fix lost, the covariance grows throughout; with fixes back, OK and within 1.5 m.
-// A 3 deg AHRS bias makes the dead reckoning drift (about 3 m in 60 s). Measured: 0.61 m before the loss, 3.77 m
-// at its end, below 1.5 m at the second fix back (t = 123), at most 1.28 m after that; no fix gated.
+// A 3 deg AHRS bias would make the dead reckoning drift 3 m in 60 s (3.77 m at the loss's end before the bias was
+// a state); the filter has learnt it from the fixes before the loss and the drift is a third of that.
 TEST(AuvNavigator, FixLossGrowsCovarianceAndRecovers) {
   AuvNavigator nav;
   TrackSim sim;
@@ -204,6 +294,9 @@ TEST(AuvNavigator, FixLossGrowsCovarianceAndRecovers) {
   sim.fixes_on = [](double t) { return t < 60.0 || t >= 120.0; };
   sim.run(nav, 60.0);
   EXPECT_EQ(nav.estimate(60.0).status, NavStatus::kOk);
+  const double bias = nav.estimate(60.0).heading_bias;
+  EXPECT_NEAR(rad2deg(bias), 3.0, 1.0);
+  EXPECT_NEAR(angleDiff(nav.estimate(60.0).yaw, sim.truth.yaw), 0.0, deg2rad(1.0));  // the yaw given out is corrected
   double last_trace = 0.0, err_at_return = 0.0;
   bool monotonic = true;
   sim.run(nav, 120.0, [&](const Truth& tr, const AuvNavEstimate& e) {
@@ -217,7 +310,7 @@ TEST(AuvNavigator, FixLossGrowsCovarianceAndRecovers) {
   });
   EXPECT_TRUE(monotonic);
   EXPECT_GT(last_trace, 0.5);
-  EXPECT_GT(err_at_return, 1.5);  // the loss mattered
+  EXPECT_LT(err_at_return, 1.5);  // the learnt bias keeps the dead reckoning close
   double back_ok = -1.0, max_err_after = 0.0;
   sim.run(nav, 180.0, [&](const Truth& tr, const AuvNavEstimate& e) {
     const double err = (e.position - tr.p).norm();
@@ -228,13 +321,14 @@ TEST(AuvNavigator, FixLossGrowsCovarianceAndRecovers) {
   EXPECT_GT(back_ok, 120.0);
   EXPECT_LT(back_ok, 150.0);
   EXPECT_LT(max_err_after, 1.5);
-  std::printf("fix loss: error %.2f m at the end of the loss, < 1.5 m again %.1f s after the first fix, "
-              "then at most %.2f m\n", err_at_return, back_ok - 121.0, max_err_after);
+  std::printf("fix loss: heading bias learnt %.2f deg, error %.2f m at the end of the loss, < 1.5 m again %.1f s "
+              "after the first fix, then at most %.2f m\n", rad2deg(bias), err_at_return, back_ok - 121.0, max_err_after);
 }
 
 // 5. Girona500: 300 s lawnmower, fixes sigma 1 m every 2 s with 1 s latency, DVL sigma 0.02 m/s, depth.
-// Position RMSE after 30 s: 0.391 m, max error 0.96 m (measured, seed 42, default position_psd 0.01; 0.21 m with
-// position_psd 0, which the fix-loss test below shows to be too trusting of a biased heading).
+// Position RMSE after 30 s: 0.433 m, max error 1.0 m (measured, seed 42, default position_psd 0.01; 0.391 m before
+// the heading bias was a state: estimating a bias this track has not got costs a little; 0.21 m with position_psd 0,
+// which the fix-loss test above shows to be too trusting of a biased heading).
 TEST(AuvNavigator, ConvergesOnLawnmowerTrack) {
   AuvNavigatorConfig cfg;
   cfg.dvl_sigma = 0.02;
@@ -360,7 +454,7 @@ TEST(AuvNavigator, StatusAndClockGoingBack) {
 // 8. Every parameter in the table; an out-of-range one is refused by the constructor.
 TEST(AuvNavigator, ConfigTableRefusesOutOfRange) {
   const auto& t = AuvNavigatorConfig::table();
-  EXPECT_EQ(t.specs().size(), 15u);
+  EXPECT_EQ(t.specs().size(), 18u);
   ASSERT_NE(t.find("gate_chi2"), nullptr);
   EXPECT_NO_THROW(AuvNavigator{AuvNavigatorConfig{}});
   AuvNavigatorConfig c;

@@ -18,6 +18,9 @@ BeaconSimConfig noiseless() {
   c.range_sigma = 0;
   c.angle_sigma = 0;
   c.dropout_probability = 0;
+  c.sound_speed_error = 0;  // the field's effects off (their statistics: test_beacon_sim.cpp)
+  c.multipath_probability = 0;
+  c.burst_probability = 0;
   c.mount.offset = {1.5, -0.4, 0.8};
   c.mount.yaw = deg2rad(20);
   c.mount.pitch = deg2rad(3);
@@ -70,6 +73,54 @@ TEST(UsblPositioner, RecoversTheSimulatedBeaconThroughMountingAndHeading) {
     EXPECT_NEAR(r.stamp, 10.0 - f.rangeTimeS(), 1e-9);
   }
   EXPECT_EQ(pos.counters().get("accepted"), 3u);
+}
+
+// The transceiver's velocity of sound 15 m/s off (1 % long ranges, 1.5 m at 150 m): with the water's measured one
+// (water_sound_speed) the positioning takes the range from the travel time instead and the fix is where the beacon is.
+TEST(UsblPositioner, RangesFromTheTravelTimeWithTheWatersVelocityOfSound) {
+  BeaconSimConfig cfg = noiseless();
+  cfg.sound_speed = 1480.0;
+  cfg.sound_speed_error = 15.0;
+  BeaconSimulator sim(cfg);
+  QualityLimits timed;
+  timed.water_sound_speed = 1480.0;
+  Positioner as_reported(cfg.mount, QualityLimits{}), from_time(cfg.mount, timed);
+  Pose usv;
+  usv.q = yawQ(deg2rad(30));
+  for (Positioner* p : {&as_reported, &from_time}) {
+    p->addUsvPosition(9.5, usv.ned);
+    p->addUsvPosition(10.5, usv.ned);
+    p->addUsvAttitude(9.5, usv.q);
+    p->addUsvAttitude(10.5, usv.q);
+  }
+  const Eigen::Vector3d auv(120, 85, 20);
+  const AcoFix f = sim.makeFix(usv, auv, MSG_RESPU);
+  const FixResult off = as_reported.process(f, 10.0, 10.0), on = from_time.process(f, 10.0, 10.0);
+  ASSERT_TRUE(off.ned && on.ned);
+  const double range = (auv - usv.ned - usv.q * cfg.mount.offset).norm();
+  EXPECT_NEAR((*off.ned - auv).norm(), range * 15.0 / 1480.0, 0.3);
+  EXPECT_LT((*on.ned - auv).norm(), 0.05 + 0.003 * range);
+  QualityLimits bad;
+  bad.water_sound_speed = 2000.0;
+  EXPECT_THROW(Positioner(cfg.mount, bad), ConfigError);
+}
+
+// Relayed samples may come out of order (datagrams): a late one takes its place instead of emptying the buffer (it
+// did: with the simulated radio's jitter every fifth USV GPS message came late and a tenth of the fixes went
+// stale). A clock gone back by seconds (a bag loop) still starts the buffer again.
+TEST(UsblTimedBuffer, ALateSampleTakesItsPlaceAClockGoneBackStartsAgain) {
+  TimedBuffer<double> b;
+  const auto lerp = [](double a, double c, double s) { return a + s * (c - a); };
+  for (const double t : {0.0, 0.1, 0.3, 0.2, 0.4}) b.add(t, 10.0 * t);  // 0.2 after 0.3
+  for (const double t : {0.05, 0.15, 0.25, 0.35}) {
+    ASSERT_TRUE(b.at(t, 0.15, lerp)) << t;
+    EXPECT_NEAR(*b.at(t, 0.15, lerp), 10.0 * t, 1e-12) << t;
+  }
+  b.add(0.0, 7.0);  // older than the newest by 0.4 s: a late sample at the front
+  EXPECT_DOUBLE_EQ(b.lastTime(), 0.4);
+  b.add(-10.0, -1.0);  // 10 s back: the clock went back
+  EXPECT_DOUBLE_EQ(b.lastTime(), -10.0);
+  EXPECT_FALSE(b.at(0.2, 0.15, lerp));
 }
 
 TEST(UsblPositioner, UsesThePoseAtTheTimeOfTheFixNotTheLatest) {
