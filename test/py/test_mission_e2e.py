@@ -39,8 +39,8 @@ MAX_AUV_HOLD_M = 2.0
 RECOVERY_DISTANCE_M = (1.0, 5.0)
 MIN_AUV_CLEARANCE_M = 1.0
 USV_TIMEOUT_S = 30.0  # config/mission/auv.yaml (mission::AuvMissionParams): no USV status this long, it comes up
-# holding at the surface without the USV (no USBL fixes: the DVL and the AHRS alone): 0.63-0.66 m in 2 runs of the job, the ROS-free
-# mission (on its surface GPS) 0.49-0.76 m over seeds 11-15
+# holding at the surface without the USV (no USBL fixes: the DVL and the AHRS alone): 0.63-0.66 m in 2 runs of the
+# job, the ROS-free mission (on its surface GPS) 0.49-0.76 m over seeds 11-15
 MAX_AUV_SURFACE_M = 1.5
 ACOLOR_MAX_NAV_RMSE_M = 0.9
 ACOLOR_MAX_TARGET_ERROR_M = 1.5
@@ -67,7 +67,8 @@ def test_default_mission_succeeds(tmp_path):
         < m["recovered_at_s"], m
     assert m["target_error_m"] is not None and m["target_error_m"] < MAX_TARGET_ERROR_M, m
     assert m["min_clearance_m"] is not None and m["min_clearance_m"] > MIN_CLEARANCE_M, m
-    assert m["usv_xte_est_samples"] > 0 and m["usv_xte_est_rmse_m"] is not None and m["usv_xte_est_rmse_m"] < MAX_USV_RMSE_M, m
+    assert m["usv_xte_est_samples"] > 0 and m["usv_xte_est_rmse_m"] is not None \
+        and m["usv_xte_est_rmse_m"] < MAX_USV_RMSE_M, m
     # the AUV navigated on USBL fixes (placed by the USV's relayed GPS and heading), fused in AuvNavigation
     assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
     assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < MAX_NAV_RMSE_M, m
@@ -101,7 +102,8 @@ def test_acolor_mission_succeeds_on_usbl_at_another_site(tmp_path):
     assert m["site"]["latitude"] == -42.8821 and m["site"]["longitude"] == 147.3514, m["site"]
     assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
     assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < ACOLOR_MAX_NAV_RMSE_M, m
-    assert m["auv_xte_true_samples"] > 500 and m["auv_xte_true_rmse_m"] is not None and m["auv_xte_true_rmse_m"] < ACOLOR_MAX_AUV_RMSE_M, m
+    assert m["auv_xte_true_samples"] > 500 and m["auv_xte_true_rmse_m"] is not None \
+        and m["auv_xte_true_rmse_m"] < ACOLOR_MAX_AUV_RMSE_M, m
     assert m["target_error_m"] is not None and m["target_error_m"] < ACOLOR_MAX_TARGET_ERROR_M, m
     # the aColor's RC channels drove the simulator, not the Girona500's thruster set-points
     import rosbag
@@ -128,7 +130,8 @@ def test_auv_stack_dies_usv_holds_position(tmp_path):
 
     assert m["usv_final_phase"] == "PEER_LOST", m
     assert m["survivor_drift_m"] is not None and m["survivor_drift_m"] < MAX_HOLD_DRIFT_M, m
-    assert m["auv_xte_true_samples"] + m["auv_approach_xte_true_samples"] > 0  # the killed recorder's bag was reindexed, not lost
+    # the killed recorder's bag was reindexed, not lost
+    assert m["auv_xte_true_samples"] + m["auv_approach_xte_true_samples"] > 0
     assert m["target_error_m"] is None
 
 
