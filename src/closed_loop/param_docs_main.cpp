@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "offshore_gnc/closed_loop/stacks.h"
 #include "offshore_gnc/control/control_loop.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/guidance/pipeline.h"
@@ -113,6 +114,13 @@ int main() {
         {{"default", sim::RadioParams()}});
   table("AUV navigation", "`config/navigation/auv_<model>.yaml` -> the AuvNavigation nodelet (USBL + depth + AHRS + DVL).",
         navigation::AuvNavigatorConfig::table(), {{"default", navigation::AuvNavigatorConfig()}});
+  closed_loop::SurfaceGpsConfig no_gps;
+  no_gps.rate = 0.0;
+  table("AUV GPS at the surface (ROS-free mission)",
+        "`closed_loop::AuvStack`'s model of the Girona500's GPS, fused as a position fix while the antenna is out of "
+        "the water (docs/mission.md, SURFACED); the aColor has none. Not read from a file; the ROS simulator has no "
+        "such sensor yet.",
+        closed_loop::SurfaceGpsConfig::table(), {{"girona500", closed_loop::SurfaceGpsConfig()}, {"acolor", no_gps}});
   table("Site origin",
         "`/site/origin` on each vehicle's master, shared by every node (launch/site.launch): `origin:=LAT,LON[,ALT]`, "
         "or the `origin:` of a site file (`site:=FILE`, e.g. `config/sites/pyhajarvi.yaml`; in simulation the "

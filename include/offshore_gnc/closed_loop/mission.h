@@ -2,11 +2,12 @@
 // The co-operative mission (paper 3.2.3, thesis chapter 5) ROS-free in one process: both vehicles' stacks
 // (closed_loop/stacks.h) on one simulated clock, the AUV's confirmed target and both missions' statuses handed
 // across as the relay would, until the USV reports the AUV recovered (docs/mission.md: it holds beside the surfaced
-// AUV, both stationary), the time limit, or `after_kill` seconds after a stack was killed. The same scenario, configuration and seeds as ./scripts/mission, with the figures its report gives
-// (metrics over the same samples: guidance's cross-track error in path following; the AUV's from the first
-// waypoint reached and on the truth, as the report's auv_xte_true_rmse_m). The AUV navigates as in the ROS mission: on USBL
-// fixes placed by the USV's GPS and heading relayed over the radio (closed_loop/usbl_navigation.h); the radio
-// (sim/radio.h, the main job's model and parameters) delays what crosses it and loses best-effort messages.
+// AUV, both stationary), the time limit, or `after_kill` seconds after a stack was killed. The same scenario,
+// configuration and seeds as ./scripts/mission, with the figures its report gives (metrics over the same samples:
+// guidance's cross-track error in path following; the AUV's from the first waypoint reached and on the truth, as the
+// report's auv_xte_true_rmse_m). The AUV navigates as in the ROS mission: on USBL fixes placed by the USV's GPS and
+// heading relayed over the radio (closed_loop/usbl_navigation.h); the radio (sim/radio.h, the main job's model and
+// parameters) delays what crosses it and loses best-effort messages.
 #include <Eigen/Core>
 
 #include <array>
