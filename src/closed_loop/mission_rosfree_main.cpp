@@ -48,6 +48,20 @@ std::string activations(const std::vector<safety::Transition>& transitions) {
   }
   return "[" + o + "]";
 }
+// The USBL fixes' scores as the main job's metrics.json has them (report.py).
+std::string usblScores(const closed_loop::UsblFixScores& u) {
+  std::string by;
+  for (const auto& [k, n] : u.rejected_by) by += (by.empty() ? "" : ", ") + str(k) + ": " + std::to_string(n);
+  char b[512];
+  std::snprintf(b, sizeof b,
+                "\"usbl_rejected_by\": {%s}, \"usbl_outliers\": %zu, \"usbl_rejected_outliers\": %zu, "
+                "\"usbl_outliers_accepted\": %zu, \"usbl_outlier_threshold_m\": %s, \"usbl_rejected_by_gates\": %zu, "
+                "\"usbl_rejected_by_gates_outliers\": %zu, \"usbl_rejected_by_gates_unplaced\": %zu, "
+                "\"usbl_multipath_replies\": %zu",
+                by.c_str(), u.outliers, u.rejected_outliers, u.outliers_accepted, num(closed_loop::kUsblOutlierM).c_str(),
+                u.by_gates, u.by_gates_outliers, u.by_gates_unplaced, u.multipath_replies);
+  return b;
+}
 // A command-line number; exits 2 naming the option when the text is not one.
 double number(const std::string& option, const std::string& text) {
   char* end = nullptr;
@@ -128,7 +142,7 @@ int main(int argc, char** argv) {
         "\"usv_final_distance_to_target_m\": %s, \"usv_wait_drift_m\": %s, \"usv_hold_p95_m\": %s, "
         "\"usv_final_phase\": %s, \"auv_final_phase\": %s, \"usv_safety\": %s, \"auv_safety\": %s, "
         "\"auv_nav_source\": %s, \"auv_nav_rmse_m\": %s, \"auv_nav_max_m\": %s, \"usbl_fixes_received\": %zu, "
-        "\"usbl_fixes_rejected\": %zu, \"relay_lost\": %zu, \"sim_time_s\": %s, \"wall_time_s\": %s}\n",
+        "\"usbl_fixes_rejected\": %zu, %s, \"relay_lost\": %zu, \"sim_time_s\": %s, \"wall_time_s\": %s}\n",
         r.success ? "true" : "false", str(closed_loop::toString(r.outcome)).c_str(), str(r.reason).c_str(),
         num(r.usv.metrics.rmse).c_str(), num(r.usv.metrics.sd).c_str(), num(r.usv.metrics.mae).c_str(),
         r.usv.metrics.samples, num(r.usv.metrics_truth.rmse).c_str(), r.usv.metrics_truth.samples,
@@ -138,8 +152,8 @@ int main(int argc, char** argv) {
         num(r.min_clearance_m).c_str(), num(r.usv_final_distance_to_target_m).c_str(),
         num(r.usv_wait_drift_m).c_str(), num(r.usv_hold_p95_m).c_str(), str(r.usv.final_phase).c_str(), str(r.auv.final_phase).c_str(),
         activations(r.usv_safety).c_str(), activations(r.auv_safety).c_str(), str(navigation).c_str(),
-        num(r.auv_nav_rmse_m).c_str(), num(r.auv_nav_max_m).c_str(), r.usbl_fixes_received, r.usbl_fixes_rejected,
-        r.relay_lost, num(r.sim_time_s).c_str(),
+        num(r.auv_nav_rmse_m).c_str(), num(r.auv_nav_max_m).c_str(), r.usbl.received, r.usbl.rejected,
+        usblScores(r.usbl).c_str(), r.relay_lost, num(r.sim_time_s).c_str(),
         num(r.wall_time_s).c_str());
     return r.success ? 0 : 1;
   } catch (const std::exception& e) {
