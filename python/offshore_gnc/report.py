@@ -182,6 +182,16 @@ def usbl_verdicts(fixes, refused, truth):
         "gates_unplaced": sum(1 for _, e in gates if e is None)}
 
 
+def sim_counter(diagnostics, status, key):
+    """A counter of a simulator's diagnostics (the last status whose name ends with `status`), None without one."""
+    value = None
+    for _, m in diagnostics:
+        for st in m.status:
+            if st.name.endswith(status):
+                value = next((int(kv.value) for kv in st.values if kv.key == key), value)
+    return value
+
+
 def path_ned(path_msg):
     """nav_msgs/Path -> [(north, east)], whatever its frame (map_ned or map)."""
     ned = path_msg.header.frame_id.endswith("ned")
@@ -487,7 +497,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
                            "/auv/guidance/status",
                            "/auv/sonar/targets", "/target", "/auv/mission/status", "/auv/odom", "/auv/usbl/fix",
                            "/auv/navigation/refused_fixes",
-                           "/auv/sim/faults", "/auv/safety/transitions", "/auv/navigation/status",
+                           "/auv/sim/faults", "/auv/safety/transitions", "/auv/navigation/status", "/diagnostics",
                            "/auv/thruster_setpoints", "/auv/rc_channels"])
     usv_track = odom_track_ned(u["/usv/ground_truth/odom"])
     auv_track = odom_track_ned(a["/auv/ground_truth/odom"])
@@ -609,6 +619,8 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         # of the rejected (stale) lacked the USV's relayed pose at their time; unplaced: no position to score
         "usbl_rejected_by_gates": usbl["gates"], "usbl_rejected_by_gates_outliers": usbl["gates_outliers"],
         "usbl_rejected_by_gates_unplaced": usbl["gates_unplaced"],
+        # the simulated pair's own count of replies sent by a reflected path (its last diagnostics; None on hardware)
+        "usbl_multipath_replies": sim_counter(a["/diagnostics"], "usbl_sim", "multipath"),
         "radio": (outcome or {}).get("radio"),  # what crossed the simulated radio between the relays (the job's)
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
         "min_clearance_m": min_clearance,  # the hull's (sim/contact.h), not the reference point's
@@ -838,6 +850,7 @@ def _summary(out, m, scenario):
         "error, depth, the filter's) %d, of them outliers %d, without a position %d | |" % (
             OUTLIER_M, m["usbl_outliers"], m["usbl_outliers"] - m["usbl_outliers_accepted"],
             m["usbl_rejected_by_gates"], m["usbl_rejected_by_gates_outliers"], m["usbl_rejected_by_gates_unplaced"]),
+        "| USBL replies by a reflected path (the simulated pair's count) | %s | |" % _fmt(m["usbl_multipath_replies"]),
         "| USV final distance to the true target | %s | |" % _fmt(m["usv_final_distance_to_target_m"], " m"),
         "| USV drift while waiting for the target | %s | |" % _fmt(m["usv_wait_drift_m"], " m"),
         "| USV hold on station (target, recovery), 95th percentile, from on station (within station_radius) | %s | |"

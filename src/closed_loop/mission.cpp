@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "offshore_gnc/common/validate.h"
 
@@ -60,6 +62,44 @@ guidance::TrackingMetrics metricsOf(const std::vector<Eigen::Vector2d>& samples)
   guidance::TrackingMetrics m = guidance::computeMetrics(e);  // NaN samples (no leg) skipped
   if (m.samples == 0) m.rmse = m.sd = m.mae = m.max_abs = m.mean = kNaN;  // nothing measured: unknown, not zero
   return m;
+}
+
+// The truth (t, north, east, down) at t, linear between its samples; nothing outside their span.
+std::optional<Eigen::Vector3d> truthAt(const std::vector<Eigen::Vector4d>& truth, double t) {
+  if (truth.empty() || t < truth.front()(0) || t > truth.back()(0)) return std::nullopt;
+  const auto b = std::lower_bound(truth.begin(), truth.end(), t,
+                                  [](const Eigen::Vector4d& s, double v) { return s(0) < v; });
+  if (b == truth.begin() || (*b)(0) == t) return b->tail<3>();
+  const auto a = b - 1;
+  const double w = (t - (*a)(0)) / ((*b)(0) - (*a)(0));
+  return Eigen::Vector3d(a->tail<3>() + w * (b->tail<3>() - a->tail<3>()));
+}
+
+// As report.usbl_verdicts: each fix's verdict (fused, gated by the filter, or the positioning's rejection) and its
+// distance from the truth at its stamp.
+UsblFixScores scoreFixes(const std::vector<UsblFixRecord>& fixes, const std::vector<Eigen::Vector4d>& truth) {
+  UsblFixScores s;
+  s.received = fixes.size();
+  for (const auto& f : fixes) {
+    const std::string verdict = f.quality != usbl::Q_OK ? usbl::qualityName(f.quality) : (f.fused ? "fused" : "gated");
+    const std::optional<Eigen::Vector3d> p = truthAt(truth, f.t);
+    const bool placed = p && f.ned.allFinite();
+    const bool outlier = placed && (f.ned - *p).norm() > kUsblOutlierM;
+    s.outliers += outlier;
+    if (verdict == "fused") {
+      s.outliers_accepted += outlier;
+      continue;
+    }
+    ++s.rejected;
+    ++s.rejected_by[verdict];
+    s.rejected_outliers += outlier;
+    if (verdict == "filter_error" || verdict == "fit_error" || verdict == "depth" || verdict == "gated") {
+      ++s.by_gates;
+      s.by_gates_outliers += outlier;
+      s.by_gates_unplaced += !placed;
+    }
+  }
+  return s;
 }
 
 void finish(VehicleRecord& r, const std::string& phase) {
@@ -295,8 +335,8 @@ MissionResult runMission(const MissionConfig& cfg) {
   res.auv_nav_rmse_m = nav.rmse;
   res.auv_nav_max_m = nav_error.empty() ? kNaN : *std::max_element(nav_error.begin(), nav_error.end());
   if (const UsblNavigation* u = auv.usblNavigation()) {
-    res.usbl_fixes_received = u->fixes().size();
-    for (const auto& f : u->fixes()) res.usbl_fixes_rejected += f.quality != usbl::Q_OK;
+    res.usbl = scoreFixes(u->fixes(), res.auv.truth);
+    res.usbl.multipath_replies = u->beaconCounters().get("multipath");
   }
   res.relay_lost = to_auv.lost() + to_usv.lost() + usv_status.lost() + auv_status.lost();
 

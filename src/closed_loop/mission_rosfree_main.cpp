@@ -52,6 +52,20 @@ std::string activations(const std::vector<safety::Transition>& transitions) {
   }
   return "[" + o + "]";
 }
+// The USBL fixes' scores as the main job's metrics.json has them (report.py).
+std::string usblScores(const closed_loop::UsblFixScores& u) {
+  std::string by;
+  for (const auto& [k, n] : u.rejected_by) by += (by.empty() ? "" : ", ") + str(k) + ": " + std::to_string(n);
+  char b[512];
+  std::snprintf(b, sizeof b,
+                "\"usbl_rejected_by\": {%s}, \"usbl_outliers\": %zu, \"usbl_rejected_outliers\": %zu, "
+                "\"usbl_outliers_accepted\": %zu, \"usbl_outlier_threshold_m\": %s, \"usbl_rejected_by_gates\": %zu, "
+                "\"usbl_rejected_by_gates_outliers\": %zu, \"usbl_rejected_by_gates_unplaced\": %zu, "
+                "\"usbl_multipath_replies\": %zu",
+                by.c_str(), u.outliers, u.rejected_outliers, u.outliers_accepted, num(closed_loop::kUsblOutlierM).c_str(),
+                u.by_gates, u.by_gates_outliers, u.by_gates_unplaced, u.multipath_replies);
+  return b;
+}
 // A command-line number; exits 2 naming the option when the text is not one.
 double number(const std::string& option, const std::string& text) {
   char* end = nullptr;
@@ -149,7 +163,7 @@ int main(int argc, char** argv) {
         "\"usv_final_distance_to_target_m\": %s, \"usv_wait_drift_m\": %s, \"usv_hold_p95_m\": %s, "
         "\"usv_final_phase\": %s, \"auv_final_phase\": %s, \"usv_safety\": %s, \"auv_safety\": %s, "
         "\"auv_nav_source\": %s, \"auv_nav_rmse_m\": %s, \"auv_nav_max_m\": %s, \"usbl_fixes_received\": %zu, "
-        "\"usbl_fixes_rejected\": %zu, \"relay_lost\": %zu, \"recovered\": %s, \"auv_hold_excursion_m\": %s, "
+        "\"usbl_fixes_rejected\": %zu, %s, \"relay_lost\": %zu, \"recovered\": %s, \"auv_hold_excursion_m\": %s, "
         "\"auv_ascent_drift_m\": %s, \"auv_surface_excursion_m\": %s, \"recovery_distance_m\": %s, \"usv_auv_min_clearance_m\": %s, "
         "\"find_to_recovery_s\": %s, \"found_at_s\": %s, \"ascent_at_s\": %s, \"surfaced_at_s\": %s, "
         "\"recovered_at_s\": %s, \"stacks_died\": %s, \"sim_time_s\": %s, \"wall_time_s\": %s}\n",
@@ -162,8 +176,8 @@ int main(int argc, char** argv) {
         num(r.min_clearance_m).c_str(), num(r.usv_final_distance_to_target_m).c_str(),
         num(r.usv_wait_drift_m).c_str(), num(r.usv_hold_p95_m).c_str(), str(r.usv.final_phase).c_str(), str(r.auv.final_phase).c_str(),
         activations(r.usv_safety).c_str(), activations(r.auv_safety).c_str(), str(navigation).c_str(),
-        num(r.auv_nav_rmse_m).c_str(), num(r.auv_nav_max_m).c_str(), r.usbl_fixes_received, r.usbl_fixes_rejected,
-        r.relay_lost, r.recovered ? "true" : "false", num(r.auv_hold_excursion_m).c_str(),
+        num(r.auv_nav_rmse_m).c_str(), num(r.auv_nav_max_m).c_str(), r.usbl.received, r.usbl.rejected,
+        usblScores(r.usbl).c_str(), r.relay_lost, r.recovered ? "true" : "false", num(r.auv_hold_excursion_m).c_str(),
         num(r.auv_ascent_drift_m).c_str(), num(r.auv_surface_excursion_m).c_str(), num(r.recovery_distance_m).c_str(), num(r.usv_auv_min_clearance_m).c_str(),
         num(r.find_to_recovery_s).c_str(), num(r.found_at_s).c_str(), num(r.ascent_at_s).c_str(),
         num(r.surfaced_at_s).c_str(), num(r.recovered_at_s).c_str(),

@@ -130,6 +130,7 @@ def test_auv_navigation_error_and_usbl_fixes(tmp_path):
     or the navigation filter's, and whether each was an outlier (farther than 3 m from the truth at its stamp)."""
     import rosbag
     import rospy
+    from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
     from nav_msgs.msg import Odometry
     from offshore_gnc.msg import UsblFix
 
@@ -163,8 +164,15 @@ def test_auv_navigation_error_and_usbl_fixes(tmp_path):
             b.write("/auv/usbl/fix", f, f.header.stamp)
             if k == 5:
                 b.write("/auv/navigation/refused_fixes", f, f.header.stamp)
+        # the simulated pair's diagnostics: its count of reflected replies, the last message's
+        for t, n in ((105, 1), (110, 2)):
+            d = DiagnosticArray()
+            d.status = [DiagnosticStatus(name="usbl_sim: usbl_sim", values=[KeyValue("pings", "9"),
+                                                                            KeyValue("multipath", str(n))])]
+            b.write("/diagnostics", d, rospy.Time(t))
     out = tmp_path / "report"
     m = report.build(None, auv_bag, None, str(out))
+    assert m["usbl_multipath_replies"] == 2
     assert m["auv_nav_source"] == "usbl"
     assert m["auv_nav_samples"] == 41
     assert m["auv_nav_rmse_m"] == pytest.approx(0.5, abs=1e-9)
@@ -193,6 +201,7 @@ def test_auv_navigation_error_and_usbl_fixes(tmp_path):
     assert m["auv_nav_source"] == "ins"
     assert m["auv_nav_rmse_m"] is None and m["auv_nav_max_m"] is None and m["auv_nav_samples"] == 0
     assert m["usbl_fixes_received"] == 1 and m["usbl_fixes_rejected"] == 1
+    assert m["usbl_multipath_replies"] is None  # no simulator's diagnostics: unknown (as on hardware)
 
 
 def test_fault_entries_carry_the_issues_keys_and_say_what_happened():

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -61,6 +62,20 @@ struct VehicleRecord {
   std::vector<std::pair<double, std::string>> phases;  // (t, phase) at each change of the mission's phase
 };
 
+// The USBL fixes as the report scores them (python/offshore_gnc/report.py usbl_verdicts, the same names in
+// metrics.json): each against the AUV's truth at its stamp; rejected by a quality gate of the positioning or by the
+// navigation filter's gate; an outlier is a fix farther than kUsblOutlierM from the truth.
+constexpr double kUsblOutlierM = 3.0;  // three times the 1 m sigma the navigation gives a fix (fix_min_sigma)
+struct UsblFixScores {
+  std::size_t received = 0, rejected = 0;
+  std::map<std::string, std::size_t> rejected_by;  // fit_error, depth, stale, filter_error, no_position, gated
+  std::size_t outliers = 0, rejected_outliers = 0, outliers_accepted = 0;
+  // The rejections meant to catch outliers (filter_error, fit_error, depth, gated: a fix's own quality, as against
+  // stale, no USV pose in time), how many of them were outliers and how many had no position to score.
+  std::size_t by_gates = 0, by_gates_outliers = 0, by_gates_unplaced = 0;
+  std::size_t multipath_replies = 0;  // replies the simulated pair sent by a reflected path
+};
+
 struct MissionResult {
   bool success = false;    // outcome == kSuccess
   Outcome outcome = Outcome::kTimeout;
@@ -78,10 +93,10 @@ struct MissionResult {
   // came, and the 95th percentile distance from its hold point over the hold at the target (NaN without one).
   double usv_wait_drift_m = 0.0, usv_hold_p95_m = 0.0;
   // The AUV's navigation during its mission (until it reports finished): its estimate against its truth,
-  // horizontal, at the estimate's rate (the report's auv_nav_rmse_m); the USBL fixes placed and how many the quality
-  // gates refused (usbl_fixes_received, usbl_fixes_rejected; none with navigation ins).
+  // horizontal, at the estimate's rate (the report's auv_nav_rmse_m); the USBL fixes (none with navigation ins).
   double auv_nav_rmse_m = 0.0, auv_nav_max_m = 0.0;
-  std::size_t usbl_fixes_received = 0, usbl_fixes_rejected = 0, relay_lost = 0;
+  UsblFixScores usbl;
+  std::size_t relay_lost = 0;
   double sim_time_s = 0.0, wall_time_s = 0.0;
   std::vector<safety::Transition> usv_safety, auv_safety;  // each supervisor's activations and releases
   std::vector<std::string> target_refusals;  // the USV mission's reasons for refusing a target it was handed

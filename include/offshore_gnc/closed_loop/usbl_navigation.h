@@ -80,6 +80,7 @@ class UsblNavigation {
   const Counters& positionerCounters() const { return positioner_.counters(); }
   const Counters& filterCounters() const { return nav_.counters(); }
   const Counters& sessionCounters() const { return session_.counters(); }
+  const Counters& beaconCounters() const { return beacon_.counters(); }  // the simulated pair's (multipath, ...)
   const navigation::AuvNavigationParams& params() const { return cfg_.params; }
 
  private:
