@@ -624,7 +624,8 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "radio": (outcome or {}).get("radio"),  # what crossed the simulated radio between the relays (the job's)
         "detection_time_s": (auv_found_t - auv_start_t) if (auv_found_t and auv_start_t) else float("nan"),
         "min_clearance_m": min_clearance,  # the hull's (sim/contact.h), not the reference point's
-        # where the USV really ended, against the true target (the stand-off is part of this distance)
+        # where the USV really held at the target (before the recovery took it on), against the true target (the
+        # stand-off is part of this distance); off_station when farther than the stand-off plus the tolerance
         "usv_final_distance_to_target_m": final_distance,
         "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95,
         # after the find (docs/mission.md, "Recovery"): the AUV keeping the spot, coming up, and the USV beside it
@@ -851,7 +852,8 @@ def _summary(out, m, scenario):
             OUTLIER_M, m["usbl_outliers"], m["usbl_outliers"] - m["usbl_outliers_accepted"],
             m["usbl_rejected_by_gates"], m["usbl_rejected_by_gates_outliers"], m["usbl_rejected_by_gates_unplaced"]),
         "| USBL replies by a reflected path (the simulated pair's count) | %s | |" % _fmt(m["usbl_multipath_replies"]),
-        "| USV final distance to the true target | %s | |" % _fmt(m["usv_final_distance_to_target_m"], " m"),
+        "| USV distance to the true target where it held there (its last ARRIVED) | %s | |" % _fmt(
+            m["usv_final_distance_to_target_m"], " m"),
         "| USV drift while waiting for the target | %s | |" % _fmt(m["usv_wait_drift_m"], " m"),
         "| USV hold on station (target, recovery), 95th percentile, from on station (within station_radius) | %s | |"
         % _fmt(m["usv_hold_p95_m"], " m"),

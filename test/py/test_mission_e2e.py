@@ -88,7 +88,7 @@ def test_default_mission_succeeds(tmp_path):
         shutil.copy(os.path.join(str(tmp_path / "default"), "rviz_usv.png"), os.environ["OFFSHORE_GNC_SAVE_SCREENSHOT"])
 
 
-def test_acolor_mission_succeeds_on_usbl_at_another_site(tmp_path):
+def test_acolor_mission_on_usbl_at_another_site_finds_the_target_and_ends_safe(tmp_path):
     """The aColor as its own vehicle: Table 4.2's LOS with R = 3 L_AUV, its yaw and heave PIDs, the constant surge
     PWM for guidance's speed, navigation on USBL fixes and its commands (no DVL). At Hobart (southern and eastern
     hemispheres): the scenario's origin reaches every node of both vehicles, no vehicle file names a site."""
