@@ -9,6 +9,7 @@
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/guidance/pipeline.h"
 #include "offshore_gnc/mission/mission.h"
+#include "offshore_gnc/models/environment.h"
 #include "offshore_gnc/navigation/auv_navigation_params.h"
 #include "offshore_gnc/navigation/auv_navigator.h"
 #include "offshore_gnc/navigation/gps_navigator.h"
@@ -17,6 +18,7 @@
 #include "offshore_gnc/perception/sonar_targets.h"
 #include "offshore_gnc/safety/supervisor.h"
 #include "offshore_gnc/sim/contact.h"
+#include "offshore_gnc/sim/sensors.h"
 #include "offshore_gnc/usbl/config.h"
 #include "offshore_gnc/usbl/session.h"
 
@@ -112,6 +114,18 @@ int main() {
         perception::SonarConfig::table(), {{"default", perception::SonarConfig()}});
   table("Sensor frames", "both perception files: where targets are put and how long a frame waits for its pose.",
         perception::SensorFrameParams::table(), {{"default", perception::SensorFrameParams()}});
+  {
+    std::vector<std::pair<std::string, models::EnvironmentParams>> presets;
+    for (const auto& n : models::seaStateNames()) presets.emplace_back(n, models::seaState(n));
+    table("Sea state",
+          "a scenario's `sea_state:` (a preset, the columns) and its `current`, `wind`, `waves` keys overriding it; the "
+          "same keys in `config/models/environment_*.yaml` (docs/simulation.md, \"Sea state\").",
+          models::EnvironmentParams::table(), presets);
+  }
+  table("LiDAR on the water", "the USV simulator's `~lidar/` parameters: what the sea adds to its LiDAR.",
+        sim::LidarSeaConfig::table(), {{"default", sim::LidarSeaConfig()}}, "lidar/");
+  table("Sonar in the water", "the AUV simulator's `~sonar/` parameters: what the water adds to its sonar.",
+        sim::SonarWaterConfig::table(), {{"default", sim::SonarWaterConfig()}}, "sonar/");
   table("USBL session", "`config/usbl/usbl.yaml` -> the Usbl nodelet's transceiver session.",
         usbl::SessionParams::table(), {{"default", usbl::SessionParams()}});
   table("Safety supervisor", "the vehicles' supervisor rules (docs/safety.md); `usv` and `auv` are the presets.",

@@ -24,7 +24,7 @@ const ParamTable<SonarConfig>& SonarConfig::table() {
       .number("min_width", &P::min_width, 0.0, 100.0, "m",
               "narrower targets, the beam's width taken off, are point scatterers (mooring lines, fish): dropped")
       .number("cfar_factor", &P::cfar_factor, 0.0, 100.0, "",
-              "a bin must reach this times the quieter side's training mean (CFAR; 0 = off)")
+              "a bin must reach this times the louder side's training mean (greatest-of CFAR; 0 = off)")
       .number("cfar_window", &P::cfar_window, 0.01, 100.0, "m", "CFAR training cells on each side")
       .number("cfar_guard", &P::cfar_guard, 0.0, 100.0, "m", "CFAR guard cells between a bin and its training cells")
       .degrees("vertical_beam_deg", &P::vertical_beam, 0.0, 90.0,

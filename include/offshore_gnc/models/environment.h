@@ -34,6 +34,9 @@ struct EnvironmentParams {
   // Waves: significant height Hs [m] (0 = calm), peak period Tp [s], the direction they come FROM [rad], JONSWAP
   // peak enhancement gamma (1 = Pierson-Moskowitz).
   double wave_height = 0.0, wave_period = 4.0, wave_direction = 0.0, wave_gamma = 3.3;
+  // > 0: the waves are the wind's sea over this fetch [m] (fetchLimitedSea of wind_speed: height and period), from
+  // the wind's direction unless a file gives waves/direction_deg; environmentFromYaml resolves it.
+  double wave_fetch = 0.0;
   double water_density = 1000.0;  // [kg/m^3] (fresh water: the thesis' lake trials)
 
   static const ParamTable<EnvironmentParams>& table();
