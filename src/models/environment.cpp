@@ -276,8 +276,7 @@ Eigen::Vector2d Environment::driftForce(double heading, const Hull& hull) const 
   return p_.water_density * kG * e * facing * d;
 }
 
-bool Environment::foam(double t, const Eigen::Vector2d& ne, double patch, double life) const {
-  const double w = whitecapFraction(windSpeed(t));
+bool Environment::foam(double t, const Eigen::Vector2d& ne, double patch, double life, double w) const {
   if (w <= 0.0 || patch <= 0.0 || life <= 0.0) return false;
   const auto ix = static_cast<std::int64_t>(std::floor(ne.x() / patch));
   const auto iy = static_cast<std::int64_t>(std::floor(ne.y() / patch));
