@@ -62,7 +62,7 @@ TEST(RosFreeMission, TheDefaultMissionSucceedsInOneProcess) {
   EXPECT_EQ(r.outcome, Outcome::kSuccess);
   EXPECT_EQ(r.auv.final_phase, "TARGET_FOUND");
   EXPECT_EQ(r.usv.final_phase, "ARRIVED");
-  EXPECT_LT(r.target_error_m, 1.5);
+  EXPECT_LT(r.target_error_m, 1.5);   // field day: 0.04-1.02 m over 15 seeds
   EXPECT_GT(r.min_clearance_m, 5.0);  // the hull's, passing the buoy
   // the AUV navigated on USBL fixes placed by the USV's relayed GPS and heading (as the main job's), not on the
   // simulator's INS-like estimate: 2026-12-04 seeds 1-5 0.37-0.63 m
@@ -71,11 +71,12 @@ TEST(RosFreeMission, TheDefaultMissionSucceedsInOneProcess) {
   EXPECT_GT(r.usv.metrics.samples, 100u);
   EXPECT_GT(r.auv.metrics.samples, 100u);
   EXPECT_LT(r.usv_final_distance_to_target_m, 6.0);
-  // Issue 15's goals on the same classes the nodelets run (2026-12-03: cross-track 0.72 m, waiting 1.04 m,
-  // holding 0.53 m; the lumped jet drifted about 50 m while waiting).
-  EXPECT_LT(r.usv.metrics.rmse, 1.0);
+  // Issue 15's goals on the same classes the nodelets run, in the field day's wind, current and chop (issue 32;
+  // 2026-12-04, mission_rosfree seeds 1-3 and 11-22: cross-track 0.84-1.13 m, waiting 0.80-1.74 m, holding
+  // 0.54-1.31 m; this is seed 1: 1.03, 1.03, 0.65 m). Bounds: the worst seen plus half again.
+  EXPECT_LT(r.usv.metrics.rmse, 1.7);
   EXPECT_LT(r.usv_wait_drift_m, 3.0);
-  EXPECT_LT(r.usv_hold_p95_m, 1.0);
+  EXPECT_LT(r.usv_hold_p95_m, 2.0);
   EXPECT_GE(r.sim_time_s, r.detection_time_s + cfg.scenario.mission.hold_time);  // held at the target before success
   // the supervisors ran and never acted: no false alarm (the buoy on the path has a safe side)
   EXPECT_TRUE(r.usv_safety.empty()) << r.usv_safety.front().rule << ": " << r.usv_safety.front().reason;
