@@ -22,6 +22,8 @@ const ParamTable<LosParams>& LosParams::table() {
       .flag("measured_crab", &P::measured_crab,
             "the crab angle from the velocity over ground, atan2(v, u), instead of estimated (GPS velocity)")
       .number("crab_tf", &P::crab_tf, 0.01, 100.0, "s", "low-pass time constant of the measured crab angle")
+      .number("crab_band", &P::crab_band, 0.0, 1000.0, "m",
+              "the crab estimate learns only within this cross-track (0 = always; farther off is the approach)")
       .number("crab_min_speed", &P::crab_min_speed, 0.0, 10.0, "m/s", "below this speed the crab angle is kept")
       .flag("crab_ned", &P::crab_ned,
             "keep the crab estimate as a NED vector (current over speed), so legs of other directions get their own")
@@ -262,7 +264,7 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
       beta_hat_ += angleDiff(beta, beta_hat_) * std::min(1.0, dt / p_.crab_tf);
     }
     beta_hat_ = std::clamp(beta_hat_, -p_.crab_limit, p_.crab_limit);
-  } else if (p_.adaptive_crab) {
+  } else if (p_.adaptive_crab && (p_.crab_band <= 0.0 || std::abs(e) < p_.crab_band)) {
     // Fossen's ALOS: the update scales with the speed U, as the cross-track rate does; without it the
     // estimate outran the look-ahead at low speed (the mission's transit lies in the slowdown: ringing at ~40 s).
     const double step = dt * p_.crab_gain * speed * delta / std::sqrt(delta * delta + e * e) * e;

@@ -42,6 +42,9 @@ GuidanceParams GuidanceParams::preset(const std::string& vehicle) {
     p.los.sphere = true;
     p.los.acceptance_radius = 0.5;
     p.los.surge_speed = 0.3;
+    // The crab estimate learns on the legs only: on the 8 m approach to the first it wound up to 34 deg and the
+    // position-following vehicle kept its bow (and its sonar's 90 deg sector) 27 deg off every leg.
+    p.los.crab_band = 2.0;
     p.sbb_enabled = false;
   } else if (vehicle == "acolor") {
     // Table 4.2 LOS row; R = 3 L_AUV (Publication IV: its positions come from the USBL only), with L_AUV =

@@ -69,6 +69,8 @@ const ParamTable<EnvironmentParams>& EnvironmentParams::table() {
       .number("waves/period", &P::wave_period, 0.5, 30.0, "s", "peak period Tp")
       .degrees("waves/direction_deg", &P::wave_direction, -360.0, 360.0, "where the waves come from")
       .number("waves/gamma", &P::wave_gamma, 1.0, 7.0, "", "JONSWAP peak enhancement (1 = Pierson-Moskowitz)")
+      .number("waves/fetch", &P::wave_fetch, 0.0, 1e7, "m",
+              "> 0: the wind's sea over this fetch (CEM growth; height and period from wind/speed, its direction)")
       .number("air_density", &P::air_density, 0.5, 2.0, "kg/m^3", "air density")
       .number("water_density", &P::water_density, 990.0, 1050.0, "kg/m^3", "water density (fresh 1000, sea 1025)");
   return t;
@@ -144,6 +146,17 @@ EnvironmentParams environmentFromYaml(const YAML::Node& root, const std::string&
                           "' is not a known key (typo?)");
   }
   readParamsYaml(root, EnvironmentParams::table(), p, source);
+  const YAML::Node waves = root["waves"];
+  if (waves && waves["fetch"]) {
+    if (waves["height"] || waves["period"])
+      throw ConfigError(source + ": key 'waves.fetch' makes the wind's sea: give it without waves.height and "
+                        "waves.period");
+    const WindSea sea = fetchLimitedSea(p.wind_speed, p.wave_fetch);
+    const bool waves_at_all = sea.period >= 0.5;  // the table's shortest: below it, ripples
+    p.wave_height = waves_at_all ? sea.height : 0.0;
+    p.wave_period = waves_at_all ? sea.period : 4.0;
+    if (!waves["direction_deg"]) p.wave_direction = p.wind_direction;
+  }
   return p;
 }
 
@@ -263,8 +276,7 @@ Eigen::Vector2d Environment::driftForce(double heading, const Hull& hull) const 
   return p_.water_density * kG * e * facing * d;
 }
 
-bool Environment::foam(double t, const Eigen::Vector2d& ne, double patch, double life) const {
-  const double w = whitecapFraction(windSpeed(t));
+bool Environment::foam(double t, const Eigen::Vector2d& ne, double patch, double life, double w) const {
   if (w <= 0.0 || patch <= 0.0 || life <= 0.0) return false;
   const auto ix = static_cast<std::int64_t>(std::floor(ne.x() / patch));
   const auto iy = static_cast<std::int64_t>(std::floor(ne.y() / patch));

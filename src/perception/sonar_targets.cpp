@@ -6,6 +6,7 @@
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/perception/wall_detection.h"
 
 namespace offshore_gnc {
 namespace perception {
@@ -24,13 +25,15 @@ const ParamTable<SonarConfig>& SonarConfig::table() {
       .number("min_width", &P::min_width, 0.0, 100.0, "m",
               "narrower targets, the beam's width taken off, are point scatterers (mooring lines, fish): dropped")
       .number("cfar_factor", &P::cfar_factor, 0.0, 100.0, "",
-              "a bin must reach this times the quieter side's training mean (CFAR; 0 = off)")
+              "a bin must reach this times the louder side's training mean (greatest-of CFAR; 0 = off)")
       .number("cfar_window", &P::cfar_window, 0.01, 100.0, "m", "CFAR training cells on each side")
       .number("cfar_guard", &P::cfar_guard, 0.0, 100.0, "m", "CFAR guard cells between a bin and its training cells")
       .degrees("vertical_beam_deg", &P::vertical_beam, 0.0, 90.0,
                "the sonar's vertical beam width (0 = no surface gate)")
       .number("surface_clearance", &P::surface_clearance, 0.0, 100.0, "m",
-              "surface gate: the deepest hull draft (and wave trough) under the surface");
+              "surface gate: the deepest hull draft (and wave trough) under the surface")
+      .number("wall_margin", &P::wall_margin, 0.0, 100.0, "m",
+              "a target mostly within this of a wall found in the sweep (2 m or longer) is part of it (0 = off)");
   return t;
 }
 
@@ -209,10 +212,35 @@ void SonarTargetExtractor::finishSweep(bool full_turn) {
     last.insert(last.end(), runs_.front().d.begin(), runs_.front().d.end());
     runs_.erase(runs_.begin());
   }
+  std::vector<WallSegment> walls;
+  if (cfg_.wall_margin > 0.0 && !runs_.empty()) {
+    std::vector<Eigen::Vector2d> points;
+    points.reserve(current_.detections.size());
+    for (const auto& x : current_.detections) points.push_back(x.point.head<2>());
+    walls = extractWalls(points, WallConfig{});
+  }
+  const auto on_wall = [&](const std::vector<SonarDetection>& d) {
+    std::size_t near = 0;
+    for (const auto& x : d)
+      for (const auto& w : walls) {
+        if (w.length() < WallConfig{}.min_length) continue;
+        const Eigen::Vector2d ab = w.b - w.a, p = x.point.head<2>();
+        const double f = std::clamp((p - w.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        if ((w.a + f * ab - p).norm() <= cfg_.wall_margin) {
+          ++near;
+          break;
+        }
+      }
+    return 2 * near >= d.size();
+  };
   for (const auto& r : runs_) {
     if (static_cast<int>(r.d.size()) < cfg_.min_beams) continue;
     if (width(r.d) < cfg_.min_width) {
       counters_.increment("point_scatterers");
+      continue;
+    }
+    if (!walls.empty() && on_wall(r.d)) {
+      counters_.increment("wall_pieces");
       continue;
     }
     current_.targets.push_back(makeTarget(r.d));

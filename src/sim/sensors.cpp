@@ -131,7 +131,9 @@ void packCloud(const LidarScan& scan, PackedCloud& out) {
   std::uint8_t* d = out.data.data();
   for (int l = 0; l < scan.layers; ++l)
     for (int b = 0; b < scan.beams; ++b, d += PackedCloud::kPointStep) {
-      const Eigen::Vector3d p = scan.pointFrd(l, b);  // NaN propagates for no return
+      const bool no_return = std::isnan(scan.ranges[static_cast<std::size_t>(l) * scan.beams + b]);
+      const float nan = std::numeric_limits<float>::quiet_NaN();
+      const Eigen::Vector3d p = no_return ? Eigen::Vector3d::Constant(nan) : scan.pointFrd(l, b);
       const float xyz[3] = {static_cast<float>(p.x()), static_cast<float>(-p.y()), static_cast<float>(-p.z())};
       const std::uint16_t ring = static_cast<std::uint16_t>(l);
       std::memcpy(d + PackedCloud::kX, xyz, sizeof xyz);
@@ -168,6 +170,10 @@ Lidar::Lidar(const LidarConfig& cfg, const World& world, std::uint64_t seed, con
   requireRange("lidar/range_sigma", cfg.range_sigma, 0, 10);
   LidarSeaConfig::table().validate(cfg.sea, "lidar/");
   beams_ = static_cast<int>(std::floor(cfg.aperture / cfg.step + 1e-9)) + 1;
+  for (int b = 0; b < beams_; ++b) {
+    cos_az_.push_back(std::cos(-cfg_.aperture / 2 + b * cfg_.step));
+    sin_az_.push_back(std::sin(-cfg_.aperture / 2 + b * cfg_.step));
+  }
 }
 
 void Lidar::scan(const VehicleState& s, LidarScan& out) {
@@ -189,28 +195,31 @@ void Lidar::scan(const VehicleState& s, LidarScan& out) {
     sin_e[l] = std::sin(cfg_.layer_elevation[l]);
     cos_e[l] = std::cos(cfg_.layer_elevation[l]);
   }
-  const bool waves = env_ && env_->significantHeight() > 0.0;
+  const double hs = env_ ? env_->significantHeight() : 0.0;
+  // whitecaps: the fraction for the wind at this moment (its gusts), once per frame
+  const double foam = env_ ? models::whitecapFraction(env_->windSpeed(s.t)) : 0.0;
   for (int b = 0; b < beams_; ++b) {
-    const double az = -cfg_.aperture / 2 + b * cfg_.step;
+    const double az = -cfg_.aperture / 2 + b * cfg_.step, ca = cos_az_[b], sa = sin_az_[b];
     out.azimuth[b] = az;
     // One 2-D cast per azimuth, along the level beam's horizontal direction; each layer then has its own slope
     // (tilted by roll and pitch). A tilted layer's horizontal direction differs from it by under 0.5 deg.
-    const Eigen::Vector3d level = to_ned * Eigen::Vector3d(std::cos(az), std::sin(az), 0.0);
+    const Eigen::Vector3d level = to_ned * Eigen::Vector3d(ca, sa, 0.0);
     if (level.head<2>().norm() < 1e-6) continue;
     const Eigen::Vector2d d = level.head<2>().normalized();
     hits_.clear();
     scene_.cast(o, d, cfg_.max_range, hits_);
     std::sort(hits_.begin(), hits_.end(), [](const Hit2d& a, const Hit2d& c) { return a.distance < c.distance; });
     for (int l = 0; l < cfg_.layers; ++l) {
-      const Eigen::Vector3d dir = to_ned * Eigen::Vector3d(cos_e[l] * std::cos(az), cos_e[l] * std::sin(az), -sin_e[l]);
+      const Eigen::Vector3d dir = to_ned * Eigen::Vector3d(cos_e[l] * ca, cos_e[l] * sa, -sin_e[l]);
       const double horizontal = dir.head<2>().norm();
       if (horizontal < 1e-6) continue;
       const double slope = dir.z() / horizontal;  // down per metre across
       // where a beam aimed below the horizon meets the water (on the waves' surface there, one iteration)
       double t_water = std::numeric_limits<double>::infinity();
-      if (slope > 0 && zs < 0) {
+      // (a beam that would not meet even a crest 2 Hs high within range never meets the water)
+      if (slope > 0 && zs < 0 && (-zs - 2.0 * hs) / slope <= cfg_.max_range) {
         t_water = -zs / slope;
-        if (waves) t_water = std::max(0.0, (-env_->elevation(s.t, o + t_water * d) - zs) / slope);
+        if (hs > 0.0) t_water = std::max(0.0, (-env_->elevation(s.t, o + t_water * d) - zs) / slope);
       }
       float& range = out.ranges[static_cast<std::size_t>(l) * beams_ + b];
       auto returns = [&](double t) {
@@ -228,8 +237,8 @@ void Lidar::scan(const VehicleState& s, LidarScan& out) {
       }
       // A beam that ends on the water returns only from a whitecap: a calm or rippled surface reflects the beam
       // away at these grazing angles.
-      if (!hit && env_ && t_water * horizontal <= cfg_.max_range &&
-          env_->foam(s.t, o + t_water * d, cfg_.sea.foam_patch, cfg_.sea.foam_life))
+      if (!hit && foam > 0.0 && t_water * horizontal <= cfg_.max_range &&
+          env_->foam(s.t, o + t_water * d, cfg_.sea.foam_patch, cfg_.sea.foam_life, foam))
         returns(t_water);
     }
   }

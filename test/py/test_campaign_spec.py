@@ -49,7 +49,8 @@ def smoke_doc():
     (lambda d: d.update(seed=1000), "'seed' = 1000 is an evaluation seed"),
     (lambda d: d["current"].update(speed=[0.3, 0.4]), "'current.speed' starts at 0.3 m/s, above the acolor's"),
     (lambda d: d["target"].update(depth_m=0.2), "'target.depth_m'"),
-    (lambda d: d["waves"].update(frequency=0.9), "'waves.frequency' = 0.9 is out of range [0.1, 0.4]"),
+    (lambda d: d["waves"].update(fetch_m=-5), "'waves.fetch_m' = -5 is out of range"),
+    (lambda d: d["waves"].update(amplitude=0.2), "'waves.amplitude' is not a known key"),
 ])
 def test_bad_specs_are_refused_naming_the_key(change, key):
     doc = smoke_doc()
@@ -132,13 +133,16 @@ def test_the_envelope_is_what_the_issue_asks():
     assert {x["obstacles"] for x in v} == {0, 1, 2, 3}
     assert sum(x["obstacles_dropped"] > 0 for x in v) < 0.05 * len(v)
     assert all(3 <= x["target_depth_m"] <= 10 and x["wind_speed_m_s"] <= 8 for x in v)
+    assert all(200 <= x["fetch_m"] <= 10000 for x in v) and max(x["fetch_m"] for x in v) > 9000
     for r in runs:
         limit = s["current"]["stem_limit"][r["options"]["auv_model"]]
         assert r["variables"]["current_speed_m_s"] <= min(0.5, limit) + 1e-3
         sc = r["scenario"]
         t, c = sc["targets"][0], sc["auv"]["coverage"]
         assert c["north_min"] <= t["north"] <= c["north_max"] and c["east_min"] <= t["east"] <= c["east_max"]
-        assert c["depth"] == 6.5  # planned from the band, the same for every run
+        # planned from the band, the same for every run: the tilted fan (0.44 m above to 5.37 m below the AUV at its
+        # 10 m range) centred on 3-10 m
+        assert abs(c["depth"] - 4.03) < 0.01
         assert math.hypot(c["north_min"], c["east_min"]) >= 20 or math.hypot(t["north"], t["east"]) >= 20
 
 

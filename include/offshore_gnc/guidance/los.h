@@ -25,6 +25,10 @@ struct LosParams {
   bool adaptive_crab = true;       // estimate the crab (sideslip) angle beta (ALOS)
   double crab_gain = 0.0067;       // gamma of the beta estimate update, per m/s of speed (Fossen's ALOS) [1/m^2]
   double crab_limit = 0.6;         // |beta_hat| bound [rad]
+  // The estimate learns only while |e| is below crab_band [m] (0: always). Farther off, the cross-track is the
+  // approach to the path, not the current's doing: the Girona500 (whose heading does not close its cross-track:
+  // it follows a position reference) learnt 34 deg on its 8 m approach and kept its bow 27 deg off every leg.
+  double crab_band = 0.0;
   // With a velocity over ground (the USV's GPS-compass: Doppler speed and heading) the crab angle is measured,
   // beta = atan2(v, u), low-passed over crab_tf, instead of estimated: it is known at once on every new leg,
   // where the estimate of the last leg's crossflow was wrong (cross-track up to 2.5 m after each SBB corner).

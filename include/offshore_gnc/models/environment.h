@@ -34,6 +34,9 @@ struct EnvironmentParams {
   // Waves: significant height Hs [m] (0 = calm), peak period Tp [s], the direction they come FROM [rad], JONSWAP
   // peak enhancement gamma (1 = Pierson-Moskowitz).
   double wave_height = 0.0, wave_period = 4.0, wave_direction = 0.0, wave_gamma = 3.3;
+  // > 0: the waves are the wind's sea over this fetch [m] (fetchLimitedSea of wind_speed: height and period), from
+  // the wind's direction unless a file gives waves/direction_deg; environmentFromYaml resolves it.
+  double wave_fetch = 0.0;
   double water_density = 1000.0;  // [kg/m^3] (fresh water: the thesis' lake trials)
 
   static const ParamTable<EnvironmentParams>& table();
@@ -46,7 +49,8 @@ EnvironmentParams seaState(const std::string& name);
 const std::vector<std::string>& seaStateNames();
 // A sea state from YAML: `sea_state: NAME` (default calm) with the table's keys (current/..., wind/..., waves/...,
 // air_density, water_density) overriding it. Unknown keys inside current, wind and waves are refused naming the
-// key; `source` prefixes every error.
+// key; `source` prefixes every error. With waves/fetch the height and period come from the wind (a file giving
+// them as well is refused): ripples under 0.5 s peak period, a breath of wind's, are no waves.
 EnvironmentParams environmentFromYaml(const YAML::Node& root, const std::string& source);
 
 // Wind sea from the wind, deep water: Hs [m] and Tp [s].
@@ -96,8 +100,8 @@ class Environment {
   // (long waves pass under it). 0 for a calm sea.
   Eigen::Vector2d driftForce(double heading, const Hull& hull) const;
   // Whitecap foam at a point of the surface: cells of `patch` metres that whiten for `life` seconds at a time,
-  // a fraction whitecapFraction(wind) of them at any time (deterministic for the seed).
-  bool foam(double t, const Eigen::Vector2d& ne, double patch, double life) const;
+  // a `fraction` of them at any time (deterministic for the seed); whitecapFraction(windSpeed(t)) is the wind's.
+  bool foam(double t, const Eigen::Vector2d& ne, double patch, double life, double fraction) const;
   double significantHeight() const { return p_.wave_height; }
   const EnvironmentParams& params() const { return p_; }
 

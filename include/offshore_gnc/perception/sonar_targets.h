@@ -58,6 +58,10 @@ struct SonarConfig {
   // reaches the water just under the surface and the hulls floating there.
   double vertical_beam = 35.0 * 3.14159265358979323846 / 180.0;  // [rad] vertical beam width; 0 = no gate
   double surface_clearance = 0.6;  // [m] the deepest hull draft (and wave trough) under the surface
+  // Walls: the sweep's detections through the wall detection (Publication II's split-and-merge, WallConfig's
+  // defaults: straight runs of at least 2 m); a target with half or more of its detections within wall_margin of
+  // a wall is a piece of that wall (a quay behind the speckle breaks into target-sized runs), dropped.
+  double wall_margin = 0.5;        // [m] 0 = off
   static const ParamTable<SonarConfig>& table();
   void validate() const;
 };

@@ -151,6 +151,7 @@ class Lidar {
   World world_;
   const models::Environment* env_;
   int beams_;
+  std::vector<double> cos_az_, sin_az_;  // per beam, fixed: the scan's trigonometry once
   RayScene scene_;
   std::vector<Hit2d> hits_;
   std::mt19937_64 rng_;

@@ -138,22 +138,31 @@ def _environment(draw, spec, model):
     env = {
         "current": {"north": _r(speed * math.cos(towards), 3), "east": _r(speed * math.sin(towards), 3),
                     "variation": _r(draw.uniform("current.variation", c["variation"]), 3),
-                    "seed": int(draw.stream("current.seed").random() * 2 ** 32)},
+                    "seed": int(draw.stream("current.seed").random() * (2 ** 31 - 1))},  # the sea's seed: an int
         "wind": {"speed": _r(wind_speed),
                  "direction_deg": _r(draw.uniform("wind.direction_deg", w["direction_deg"]), 1),
                  "gust": _r(wind_speed * draw.uniform("wind.gust_factor", w["gust_factor"]))},
-        "waves": {k: _r(draw.uniform("waves." + k, wv[k]), digits) for k, digits in
-                  (("amplitude", 3), ("heave_amplitude", 3), ("yaw_amplitude_deg", 2), ("frequency", 3),
-                   ("direction_deg", 1))},
+        # the wind's sea (fetch-limited growth, docs/simulation.md "Sea state"): its height and period follow from
+        # the wind and the open water up-wind of the site, as they would there
+        "waves": {"fetch": _r(draw.uniform("waves.fetch_m", wv["fetch_m"]), 0)},
     }
     return env
 
 
+# The AUV's sonar (sim/sensors.h SonarConfig): 10 m range, a 35-degree vertical fan on a head tilted 15 degrees down.
+SONAR_RANGE_M, SONAR_VERTICAL_DEG, SONAR_TILT_DEG = 10.0, 35.0, 15.0
+
+
 def survey_depth(draw, spec):
-    """'plan': the middle of the campaign's target depth band, where the sonar's 35-degree vertical beam is centred
-    on the band (a team knows the band, not where in it the target lies)."""
+    """'plan': the depth from which the sonar's fan, at its full range, is centred on the campaign's target depth band
+    (a team knows the band, not where in it the target lies). The fan reaches from R sin(17.5 - 15 deg) = 0.44 m
+    above the AUV to R sin(17.5 + 15 deg) = 5.37 m below it: the plan surveys 2.47 m above the band's middle."""
     s = spec["auv"]["survey_depth_m"]
-    return sum(spec["target"]["depth_m"]) / 2 if s == "plan" else draw.uniform("auv.survey_depth_m", s)
+    if s != "plan":
+        return draw.uniform("auv.survey_depth_m", s)
+    half, tilt = math.radians(SONAR_VERTICAL_DEG / 2), math.radians(SONAR_TILT_DEG)
+    above, below = SONAR_RANGE_M * math.sin(half - tilt), SONAR_RANGE_M * math.sin(half + tilt)
+    return max(0.5, sum(spec["target"]["depth_m"]) / 2 - (below - above) / 2)
 
 
 def _target(d, spec, area):
@@ -201,7 +210,7 @@ def generate(spec, index):
     variables = {  # what the report bins success by
         "site": site["name"], "auv_model": model,
         "current_speed_m_s": _r(math.hypot(scenario["current"]["north"], scenario["current"]["east"]), 3),
-        "wind_speed_m_s": scenario["wind"]["speed"], "wave_amplitude_m": scenario["waves"]["amplitude"],
+        "wind_speed_m_s": scenario["wind"]["speed"], "fetch_m": scenario["waves"]["fetch"],
         "obstacles": len(placed), "obstacles_dropped": dropped, "target_depth_m": target["depth"],
         "transit_m": _r(math.hypot(*station), 1), "fault": fault or "none",
     }

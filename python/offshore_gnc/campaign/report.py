@@ -26,7 +26,7 @@ METRICS = (
 VARIABLES = (
     ("current_speed_m_s", "current speed [m/s]", False), ("wind_speed_m_s", "wind speed [m/s]", False),
     ("obstacles", "obstacles", True), ("target_depth_m", "target depth [m]", False), ("site", "site", True),
-    ("auv_model", "AUV model", True), ("wave_amplitude_m", "wave amplitude [m]", False),
+    ("auv_model", "AUV model", True), ("fetch_m", "fetch (waves) [m]", False),
     ("transit_m", "USV transit [m]", False), ("fault", "fault", True),
 )
 BINS = 5

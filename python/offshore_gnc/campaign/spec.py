@@ -196,8 +196,8 @@ SCHEMA = {
     "current": {"speed": dist(0, 5, 0.0), "direction_deg": dist(-360, 360, [0.0, 360.0]),
                 "variation": dist(0, 2, 0.0), "stem_limit": per_model(0.0, 5.0)},
     "wind": {"speed": dist(0, 40, 0.0), "direction_deg": dist(-360, 360, [0.0, 360.0]), "gust_factor": dist(0, 1, 0.0)},
-    "waves": {"amplitude": dist(0, 5, 0.0), "heave_amplitude": dist(0, 5, 0.0), "yaw_amplitude_deg": dist(0, 30, 0.0),
-              "frequency": dist(0.1, 0.4, 0.3), "direction_deg": dist(-360, 360, [0.0, 360.0])},
+    # the wind's sea over this fetch, from the wind's direction (the scenario's waves.fetch: models::environment)
+    "waves": {"fetch_m": dist(0, 1e7, 0.0)},
     "area": {"distance_m": dist(5, 5000), "bearing_deg": dist(-360, 360, [0.0, 360.0]), "length_m": dist(1, 5000),
              "width_m": dist(1, 5000), "spacing_m": dist(0.5, 1000, 5.0)},
     "usv": {"yaw_deg": dist(-360, 360, [0.0, 360.0])},

@@ -63,7 +63,7 @@ TEST(RosFreeMission, TheDefaultMissionSucceedsInOneProcess) {
   EXPECT_TRUE(r.recovered);
   EXPECT_EQ(r.auv.final_phase, "SURFACED");  // RECOVERED once it hears the USV's status, after the run's end
   EXPECT_EQ(r.usv.final_phase, "RECOVERED");
-  EXPECT_LT(r.target_error_m, 1.5);
+  EXPECT_LT(r.target_error_m, 1.5);   // field day: 0.04-1.02 m over 15 seeds
   EXPECT_GT(r.min_clearance_m, 5.0);  // the hull's, passing the buoy
   // the AUV navigated on USBL fixes placed by the USV's relayed GPS and heading (as the main job's), not on the
   // simulator's INS-like estimate: 2026-12-04 seeds 1-5 0.26-0.32 m, 11-22 0.24-0.80 m (issue 32's rough sensors)
@@ -79,13 +79,15 @@ TEST(RosFreeMission, TheDefaultMissionSucceedsInOneProcess) {
   EXPECT_GT(r.usbl.rejected, 0u);
   EXPECT_GT(r.usv.metrics.samples, 100u);
   EXPECT_GT(r.auv.metrics.samples, 100u);
-  // Issue 15's goals on the same classes the nodelets run (2026-12-03: cross-track 0.72 m, waiting 1.04 m,
-  // holding 0.53 m; the lumped jet drifted about 50 m while waiting). The hold now counts at the target and at the
-  // recovery point, each from on station (2026-12-04 seeds 1-5: 0.75-1.29 m: the arrival's swing into the current
-  // is in it, the run no longer waits 60 s on station before it ends).
-  EXPECT_LT(r.usv.metrics.rmse, 1.0);
+  EXPECT_LT(r.usv_final_distance_to_target_m, 6.0);
+  // Issue 15's goals on the same classes the nodelets run, in the field day's wind, current and chop (issue 32;
+  // 2026-12-04, mission_rosfree seeds 1-3 and 11-22: cross-track 0.84-1.13 m, waiting 0.80-1.74 m, holding
+  // 0.54-1.31 m). The hold counts at the target and at the recovery point, each from on station. Bounds: the worst
+  // seen plus half again.
+  EXPECT_LT(r.usv.metrics.rmse, 1.7);
   EXPECT_LT(r.usv_wait_drift_m, 3.0);
   EXPECT_LT(r.usv_hold_p95_m, 2.0);
+  EXPECT_GE(r.sim_time_s, r.detection_time_s + cfg.scenario.mission.hold_time);  // held at the target before success
   // After the find (issue 36; 2026-12-04 seeds 1-5): the AUV held within 0.85-1.54 m of its point, came up drifting
   // 0.41-0.56 m, the hull ended 3.41-4.42 m off it and was never closer than 3.41 m, 166-169 s from the find.
   EXPECT_LE(r.auv_hold_excursion_m, 2.0);
@@ -198,10 +200,14 @@ TEST(RosFreeMission, TheUsvWaitsAndHoldsInAStrongCurrent) {
   EXPECT_LT(r.usv_hold_p95_m, 2.0);
 }
 
+// Issue 32: no_target.yaml in the moderate sea (Beaufort 4, Hs 1 m) with everything that echoes: the surface, a
+// bottom 7 m down, the buoy's mooring line in the coverage area, volume clutter. None of it may become a target, and the AUV comes back (one
+// seed here; `./scripts/bench clutter` runs 20).
 TEST(RosFreeMission, NoTargetScenarioEndsWithTheAuvRecovered) {
-  // Without a target the AUV comes up at the end of its search and the USV goes straight to recovery (2026-12-04
-  // seeds 1-5: 129-145 s from the search's end, the hull 2.67-4.25 m off it, never closer than 2.57 m).
+  // Without a target the AUV comes up at the end of its search and the USV goes straight to recovery.
   const MissionConfig cfg = loadMission("config", "config/scenarios/no_target.yaml");
+  ASSERT_NEAR(cfg.scenario.sea.wave_height, 1.0, 0.05);
+  ASSERT_GT(cfg.auv.sim.sonar.water.clutter_density, 0.0);
   const MissionResult r = runMission(cfg);
   EXPECT_TRUE(r.success) << r.reason;  // the scenario expects no target, and the AUV back
   EXPECT_EQ(r.usv.final_phase, "RECOVERED");

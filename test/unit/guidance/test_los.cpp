@@ -10,6 +10,7 @@
 #include "offshore_gnc/guidance/los.h"
 #include "offshore_gnc/guidance/metrics.h"
 #include "offshore_gnc/guidance/paths.h"
+#include "offshore_gnc/guidance/pipeline.h"
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::guidance;
@@ -90,6 +91,24 @@ TEST(Los, AdaptiveCrabGrowsWithStandingError) {
   EXPECT_DOUBLE_EQ(o.crab_angle, after_moving);
   for (int i = 0; i < 100000; ++i) o = g.update(moving(10, 50.0, 1.5), 0.1);
   EXPECT_NEAR(o.crab_angle, p.crab_limit, 1e-12);
+}
+
+// crab_band: 8 m off the path (an approach) the estimate learns nothing; within the band it learns as before.
+TEST(Los, CrabLearnsOnlyWithinItsBand) {
+  LosParams p = plain();
+  p.adaptive_crab = true;
+  p.crab_band = 2.0;
+  LosGuidance g(p);
+  g.setPath({V3(0, 0, 0), V3(1000, 0, 0)});
+  LosOutput o;
+  VehicleState s = at(10, 8.0);
+  s.velocity.x() = 0.3;
+  for (int i = 0; i < 400; ++i) o = g.update(s, 0.1);
+  EXPECT_EQ(o.crab_angle, 0.0);
+  s.position.y() = 1.0;
+  for (int i = 0; i < 400; ++i) o = g.update(s, 0.1);
+  EXPECT_GT(o.crab_angle, 0.0);
+  EXPECT_EQ(GuidanceParams::preset("girona500").los.crab_band, 2.0);  // the Girona500's (docs/parameters.md)
 }
 
 TEST(Los, MeasuredCrabAngleIsTheSideslipOverGroundOnEveryLeg) {

@@ -371,6 +371,19 @@ TEST(Environment, SeaStatesFromTheFieldDayAndBeaufort4) {
   const EnvironmentParams o = environmentParamsFromYaml("sea_state: moderate\nwind: {speed: 3.0}\n", "e.yaml");
   EXPECT_EQ(o.wind_speed, 3.0);
   EXPECT_EQ(o.wave_height, m.wave_height);
+  // the wind's sea over a fetch (what a campaign draws): the field day's wind over its 1.5 km is its chop, from the
+  // wind's direction unless the file says otherwise; a breath of wind makes no waves; height and fetch together
+  // are refused
+  const EnvironmentParams w =
+      environmentParamsFromYaml("wind: {speed: 3.7, direction_deg: 202.5}\nwaves: {fetch: 1500}\n", "e.yaml");
+  EXPECT_NEAR(w.wave_height, f.wave_height, 1e-12);
+  EXPECT_NEAR(w.wave_period, f.wave_period, 1e-12);
+  EXPECT_NEAR(rad2deg(w.wave_direction), 202.5, 1e-9);
+  EXPECT_NEAR(rad2deg(environmentParamsFromYaml("sea_state: moderate\nwaves: {fetch: 1e6, direction_deg: 90}\n",
+                                                "e.yaml").wave_direction), 90.0, 1e-9);
+  EXPECT_EQ(environmentParamsFromYaml("wind: {speed: 0.5}\nwaves: {fetch: 1000}\n", "e.yaml").wave_height, 0.0);
+  EXPECT_THROW(environmentParamsFromYaml("wind: {speed: 5}\nwaves: {fetch: 1000, height: 0.3}\n", "e.yaml"),
+               ConfigError);
 }
 
 TEST(Environment, TheHullFollowsLongWavesAndAveragesShortOnes) {

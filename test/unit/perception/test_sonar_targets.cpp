@@ -91,6 +91,33 @@ TEST(SonarTargets, StaticVehicleFindsTwoTargets) {
   }
 }
 
+// A quay wall 10 m north and a target: the wall's runs lie along the wall the sweep's detections trace (issue 32:
+// the harbour scenario's sonar took pieces of its quay for the target), so they are dropped; the target stays.
+TEST(SonarTargets, PiecesOfAWallAreNotTargets) {
+  for (const double margin : {0.0, 0.5}) {
+    SonarConfig cfg;
+    cfg.wall_margin = margin;
+    SonarTargetExtractor ex(cfg);
+    Sim sim;
+    sim.circles = {{-6.0, -8.0, 0.6}};
+    sim.walls = {{{10.0, -12.0}, {10.0, 12.0}}};
+    sim.turns(ex, kPi / 2, 1);
+    ASSERT_EQ(sim.sweeps.size(), 1u);
+    int on_wall = 0, at_target = 0;
+    for (const auto& t : sim.sweeps[0].targets) {
+      on_wall += std::abs(t.geometry.centroid.x() - 10.0) < 0.5;
+      at_target += std::hypot(t.geometry.centroid.x() + 6.0, t.geometry.centroid.y() + 8.0) < 1.0;
+    }
+    EXPECT_EQ(at_target, 1) << "margin " << margin;
+    if (margin > 0.0) {
+      EXPECT_EQ(on_wall, 0);
+      EXPECT_GE(ex.counters().get("wall_pieces"), 1u);
+    } else {
+      EXPECT_GE(on_wall, 1);  // without the rule the wall is a target
+    }
+  }
+}
+
 TEST(SonarTargets, VehicleMotionDuringTheSweepIsCompensated) {
   // The vehicle moves north at 0.5 m/s and turns 20 degrees during the 20 s sweep: 10 m of travel, so a
   // sweep positioned with one pose would be metres off.
