@@ -10,6 +10,8 @@
 #include "offshore_gnc/control/control_loop.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/guidance/pipeline.h"
+#include "offshore_gnc/micron/session.h"
+#include "offshore_gnc/micron_sim/emulator.h"
 #include "offshore_gnc/mission/mission.h"
 #include "offshore_gnc/navigation/auv_navigation_params.h"
 #include "offshore_gnc/navigation/auv_navigator.h"
@@ -116,6 +118,10 @@ int main() {
         perception::SensorFrameParams::table(), {{"default", perception::SensorFrameParams()}});
   table("USBL session", "`config/usbl/usbl.yaml` -> the Usbl nodelet's transceiver session.",
         usbl::SessionParams::table(), {{"default", usbl::SessionParams()}});
+  table("Micron sonar", "`config/micron/micron.yaml` -> the MicronSonar driver (docs/hardware.md).",
+        micron::DriverConfig::table(), {{"default", micron::DriverConfig()}});
+  table("Micron emulator", "the MicronEmulator nodelet's private parameters (a head on a pseudo-terminal).",
+        micron_sim::EmulatorConfig::table(), {{"default", micron_sim::EmulatorConfig()}});
   table("Relay", "`config/relay/<vehicle>.yaml` -> relay_node or the Relay nodelet (docs/relay.md).",
         relay::RelayConfig::table(), {{"default", relay::RelayConfig()}});
   table("Relay peers", "each entry of the relay's `peers` list.", relay::PeerEntry::table(),
