@@ -6,7 +6,6 @@ target_compile_definitions(mission_rosfree PRIVATE OFFSHORE_GNC_CONFIG_DIR="${PR
 # the main job's report judges its run with the same code (closed_loop/outcome.h, sim/contact.h)
 offshore_gnc_tool(mission_outcome SOURCES src/closed_loop/mission_outcome_main.cpp)
 target_compile_definitions(mission_outcome PRIVATE OFFSHORE_GNC_CONFIG_DIR="${PROJECT_SOURCE_DIR}/config")
-offshore_gnc_tool(param_docs SOURCES src/closed_loop/param_docs_main.cpp)
 # perception_bench: our extractor against PCL's EuclideanClusterExtraction on synthetic frames and a harbour frame
 # from the simulator's MRS1000 ray caster; PCL only here, so no other file pays its compile time.
 find_package(PCL QUIET COMPONENTS common search kdtree segmentation)

@@ -21,24 +21,63 @@ double HeadGeometry::bearingOf(int head_units) const {
 
 int HeadGeometry::unitsOf(double bearing) const { return radToUnits(forward_offset + (inverted ? -bearing : bearing)); }
 
+const ParamTable<HeadGeometry>& HeadGeometry::table() {
+  using G = HeadGeometry;
+  static const ParamTable<G> t = ParamTable<G>()
+      .degrees("forward_offset_deg", &G::forward_offset, 0.0, 360.0,
+               "head angle along the AUV's x axis (SeaNet: 3200/6400 of a turn = 180)")
+      .flag("inverted", &G::inverted, "head mounted boot down (head angles run anticlockwise)");
+  return t;
+}
+
+const ParamTable<SonarSettings>& SonarSettings::table() {
+  using S = SonarSettings;
+  static const ParamTable<S> t =
+      ParamTable<S>()
+          .number("range", &S::range, 0.3, 75.0, "m", "the Micron's 0.3 .. 75 m")
+          .degrees("sector_deg", &S::sector, 1.8, 360.0, "centred on forward; 360 = continuous rotation")
+          .degrees("step_deg", &S::step, 0.05625, 14.3, "motor step per ping (1 .. 255 units; 0.45, 0.9, 1.8, 3.6)")
+          .integer("bins", &S::bins, 8, 1500, "samples per beam")
+          .number("gain", &S::gain, 0.0, 1.0, "", "initial receiver gain (0 .. 80 dB)")
+          .number("ad_low_db", &S::ad_low, 0.0, 80.0, "dB", "echo level mapped to intensity 0")
+          .number("ad_span_db", &S::ad_span, 1.0, 80.0, "dB", "... and to 255 above ad_low_db (the sum at most 80)")
+          .number("sound_speed", &S::sound_speed, 1300.0, 1700.0, "m/s", "fresh water ~1480, sea water ~1500-1520")
+          .degrees("beam_width_deg", &S::beam_width, 0.1, 60.0, "horizontal beam width (not in the protocol)")
+          .nest("", &S::geometry, HeadGeometry::table())
+          .nest("", &S::four_bit, FourBitFormat::table())
+          .integer("head_type", &S::head_type, 0, 255, "0x11 = DST (Micron)")
+          .integer("mo_time", &S::mo_time, 1, 255, "motor step delay [10 us]")
+          .flag("reboot_on_start", &S::reboot_on_start, "mtReBoot before the bring-up")
+          .number("reply_timeout", &S::reply_timeout, 0.05, 30.0, "s", "for mtHeadData after mtSendData")
+          .number("command_retry", &S::command_retry, 0.05, 60.0, "s",
+                  "between mtSendVersion / mtHeadCommand attempts")
+          .number("alive_timeout", &S::alive_timeout, 0.5, 60.0, "s", "without any packet: the head is reported silent")
+          .integer("max_data_timeouts", &S::max_data_timeouts, 1, 1000,
+                   "reply timeouts in a row before the head command is sent again");
+  return t;
+}
+
+const ParamTable<DriverConfig>& DriverConfig::table() {
+  using D = DriverConfig;
+  static const ParamTable<D> t =
+      ParamTable<D>()
+          .string("port", &D::port, "the head's serial device")
+          .integer("baud", &D::baud, 9600, 230400, "the line's speed")
+          .number("reconnect_period", &D::reconnect_period, 0.05, 60, "s",
+                  "between reopen attempts of a vanished device")
+          .number("device_wait", &D::device_wait, 0, 120, "s",
+                  "the device must appear within this at start, or the node fails naming it")
+          .string("frame_id", &D::frame_id, "the beams' frame (x forward, y starboard, z down)")
+          .string("base_frame", &D::base_frame, "the AUV's body frame the head is mounted in")
+          .numbers("mount", &D::mount, 3, -10, 10, "m", "head in the AUV's body frame, x forward, y starboard, z down")
+          .flag("publish_mount_tf", &D::publish_mount_tf, "the mount as a static transform")
+          .nest("", &D::sonar, SonarSettings::table());
+  return t;
+}
+
 void SonarSettings::validate() const {
-  requireRange("range", range, 0.3, 75.0);  // the Micron's 0.3 .. 75 m
-  requireRange("sector_deg", rad2deg(sector), 1.8, 360.0);
-  requireRange("step_deg", rad2deg(step), 0.05625, 14.3);  // 1 .. 255 units
-  requireRange("bins", bins, 8, 1500);
-  requireRange("gain", gain, 0.0, 1.0);
-  requireRange("ad_low_db", ad_low, 0.0, 80.0);
-  requireRange("ad_span_db", ad_span, 1.0, 80.0);
+  table().validate(*this);
   requireRange("ad_low_db + ad_span_db", ad_low + ad_span, 1.0, 80.0);
-  requireRange("sound_speed", sound_speed, 1300.0, 1700.0);
-  requireRange("beam_width_deg", rad2deg(beam_width), 0.1, 60.0);
-  requireRange("forward_offset_deg", rad2deg(geometry.forward_offset), 0.0, 360.0);
-  requireRange("mo_time", mo_time, 1, 255);
-  requireRange("reply_timeout", reply_timeout, 0.05, 30.0);
-  requireRange("command_retry", command_retry, 0.05, 60.0);
-  requireRange("alive_timeout", alive_timeout, 0.5, 60.0);
-  requireRange("max_data_timeouts", max_data_timeouts, 1, 1000);
-  FourBitFormat::table().validate(four_bit);
   if (sector < 2.0 * kPi - 1e-9 && stepUnits() > radToUnits(sector))
     throw ConfigError("parameter 'step_deg' = " + std::to_string(rad2deg(step)) + " is larger than the sector");
   const double interval = 2.0 * range / sound_speed / bins / kAdIntervalS;
@@ -55,7 +94,7 @@ HeadCommand SonarSettings::headCommand() const {
   HeadCommand c;
   const bool continuous = sector >= 2.0 * kPi - 1e-9;
   c.hd_ctrl = kAdc8On | kRaw | kHasMot | kReplyAsl | kScanRight | (continuous ? kCont : 0);
-  c.head_type = head_type;
+  c.head_type = static_cast<std::uint8_t>(head_type);
   c.range_scale = static_cast<std::uint16_t>(std::lround(range * 10.0)) & 0x3FFF;  // metres
   // The sector is centred on forward; the limits are head angles (inversion handled by geometry).
   c.left_limit = static_cast<std::uint16_t>(geometry.unitsOf(geometry.inverted ? sector / 2 : -sector / 2));

@@ -10,17 +10,23 @@
 namespace offshore_gnc {
 namespace perception {
 
-void WallConfig::validate() const {
-  requireRange("split_distance", split_distance, 1e-3, 100);
-  requireRange("break_distance", break_distance, 1e-3, 1e3);
-  requireRange("merge_angle", merge_angle, 0.0, 1.0);
-  requireRange("merge_distance", merge_distance, 0.0, 100);
-  requireRange("merge_gap", merge_gap, 0.0, 1e3);
-  requireRange("min_points", min_points, 2, 1e6);
-  requireRange("min_length", min_length, 0.0, 1e4);
-  requireRange("offset", offset, 0.0, 1e3);
-  requireRange("spacing", spacing, 1e-3, 1e3);
+const ParamTable<WallConfig>& WallConfig::table() {
+  using W = WallConfig;
+  static const ParamTable<W> t = ParamTable<W>()
+      .number("split_distance", &W::split_distance, 1e-3, 100, "m", "eq. 7: a point farther from the line splits the set")
+      .number("break_distance", &W::break_distance, 1e-3, 1e3, "m", "consecutive points farther apart start a new set")
+      .degrees("merge_angle_deg", &W::merge_angle, 0.0, 45.0, "segments whose directions differ less are collinear...")
+      .number("merge_distance", &W::merge_distance, 0.0, 100, "m", "...when each one's ends lie this close to the other's line...")
+      .number("merge_gap", &W::merge_gap, 0.0, 1e3, "m", "...and the gap between them is at most this")
+      .integer("min_points", &W::min_points, 2, 1000000, "a segment of fewer points is no wall")
+      .number("min_length", &W::min_length, 0.0, 1e4, "m", "the shortest wall a path is planned along")
+      .number("wall_distance", &W::offset, 0.0, 1e3, "m", "the waypoints' distance from the wall")
+      .number("waypoint_spacing", &W::spacing, 1e-3, 1e3, "m", "the two waypoints are this far apart (Publication II)")
+      .string("base_frame", &W::base_frame, "the vehicle frame whose pose at the sweep's end places the waypoints");
+  return t;
 }
+
+void WallConfig::validate() const { table().validate(*this); }
 
 namespace {
 

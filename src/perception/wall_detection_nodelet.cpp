@@ -10,7 +10,6 @@
 #include <atomic>
 #include <memory>
 
-#include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/perception/wall_detection.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/ros/markers.h"
@@ -25,17 +24,8 @@ class WallDetectionNodelet : public nodelet::Nodelet {
     ros_util::ParamReader p(pnh);
     try {
       sonar_.readParams(p);
-      cfg_.split_distance = p.number("split_distance", 0.25, 1e-3, 100);
-      cfg_.break_distance = p.number("break_distance", 1.5, 1e-3, 1e3);
-      cfg_.merge_angle = deg2rad(p.number("merge_angle_deg", 6.0, 0.0, 45.0));
-      cfg_.merge_distance = p.number("merge_distance", 0.4, 0.0, 100);
-      cfg_.merge_gap = p.number("merge_gap", 3.0, 0.0, 1e3);
-      cfg_.min_points = p.integer("min_points", 6, 2, 1000000);
-      cfg_.min_length = p.number("min_length", 2.0, 0.0, 1e4);
-      cfg_.offset = p.number("wall_distance", 2.0, 0.0, 1e3);
-      cfg_.spacing = p.number("waypoint_spacing", 2.0, 1e-3, 1e3);
+      ros_util::readParams(p, perception::WallConfig::table(), cfg_);
       cfg_.validate();
-      base_frame_ = p.text("base_frame", "auv/base_link");
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -67,7 +57,7 @@ class WallDetectionNodelet : public nodelet::Nodelet {
     const ros::Time stamp(s.end_stamp);
     Eigen::Isometry3d vehicle;
     std::string err;
-    if (!perception_ros::lookupPose(*sonar_.tf, sonar_.target_frame, base_frame_, stamp, sonar_.tf_timeout, vehicle, err)) {
+    if (!perception_ros::lookupPose(*sonar_.tf, sonar_.target_frame, cfg_.base_frame, stamp, sonar_.tf_timeout, vehicle, err)) {
       sonar_.extractor->counters().increment("no_transform");
       NODELET_WARN_THROTTLE(5.0, "no vehicle pose for the wall path: %s", err.c_str());
       return;
@@ -128,7 +118,6 @@ class WallDetectionNodelet : public nodelet::Nodelet {
   }
 
   perception::WallConfig cfg_;
-  std::string base_frame_;
   perception_ros::SonarFeed sonar_;
   ros::Publisher path_pub_;
   ros_util::NamespaceMarkers markers_;

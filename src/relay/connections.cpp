@@ -122,7 +122,7 @@ void Engine::onHello(Conn& c, const Frame& f) {
   c.hello_received = true;
   c.remote = hello;
   const SessionKeys keys = sessionKeys(psk_, c.nonce, hello.nonce);
-  c.link.setKeys(keys.tx, keys.rx, cfg_.max_frame_bytes);
+  c.link.setKeys(keys.tx, keys.rx, std::size_t(cfg_.max_frame_bytes));
   if (udp_.isOpen()) c.udp.connect(c.link.fd(), hello.udp_port);
   Writer w;
   w.u64(0);

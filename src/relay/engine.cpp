@@ -17,7 +17,7 @@ namespace relay {
 Engine::Engine(RelayConfig cfg, Callbacks cb, Counters& counters)
     : cfg_(std::move(cfg)), cb_(std::move(cb)), counters_(counters) {
   validate(cfg_);
-  if (cfg_.auth) psk_ = Authenticator(cfg_.key);
+  if (cfg_.authenticated()) psk_ = Authenticator(cfg_.key);
   std::mt19937_64 rng(std::random_device{}());
   session_ = rng() | 1;
   out_types_.resize(cfg_.topics.size());
@@ -249,7 +249,7 @@ void Engine::sendBestEffort(Peer& p, std::size_t index, std::uint8_t flags, cons
   // (the first message of a topic on a link goes by TCP, in order behind its announce: a datagram could overtake
   // the announce and be dropped as an unknown topic, and the first message is never lost)
   if (c && c->established && c->udp.enabled && c->tcp_first_sent.count(index) &&
-      wire->size() + kHeaderSize + kTagSize <= cfg_.max_datagram_bytes) {
+      wire->size() + kHeaderSize + kTagSize <= std::size_t(cfg_.max_datagram_bytes)) {
     if (c->udp.send(udp_, h, wire->data(), wire->size(), c->link.sendKey())) {
       traffic.carried(wire->size(), true);
     } else {

@@ -49,7 +49,9 @@ struct Engine::Peer {
   std::vector<TopicTraffic> out_traffic, in_traffic;  // per topic index
   double last_status = 0.0;
   Peer(const PeerConfig& c, const RelayConfig& rc)
-      : cfg(c), queue(rc.queue_messages, rc.queue_bytes), redial(rc.backoff_min, rc.backoff_max) {
+      : cfg(c),
+        queue(std::size_t(rc.queue_messages), std::size_t(rc.queue_bytes)),
+        redial(rc.backoff_min, rc.backoff_max) {
     for (const auto& t : rc.topics) limits.emplace_back(t.rate_hz, std::max(1.0, t.rate_hz * 0.5));
     out_traffic.resize(rc.topics.size());
     in_traffic.resize(rc.topics.size());

@@ -150,7 +150,7 @@ void Engine::handleData(Peer& p, Frame& f, std::vector<Delivery>& out) {
   // index resolved later (the announce may be decided in this same batch)
   Delivery d{Delivery::Message, &p, h.topic_id, -1, {}, {}};
   if (h.flags & kCompressed) {
-    if (!decompress(f.payload.data(), f.payload.size(), cfg_.max_frame_bytes, d.data)) {
+    if (!decompress(f.payload.data(), f.payload.size(), std::size_t(cfg_.max_frame_bytes), d.data)) {
       counters_.increment("frames_malformed");
       ++p.rejected;
       return;
@@ -175,7 +175,7 @@ void Engine::onDatagrams(std::vector<Delivery>& out) {
       counters_.increment("udp_unknown_source");
       continue;
     }
-    FrameDecoder d(cfg_.max_datagram_bytes);
+    FrameDecoder d(std::size_t(cfg_.max_datagram_bytes));
     d.setAuthenticator(c->link.receiveKey());
     d.feed(buf.data(), n);
     Frame f;

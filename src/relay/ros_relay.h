@@ -23,103 +23,30 @@ namespace offshore_gnc {
 
 namespace relay_ros {
 
-inline std::string member(XmlRpc::XmlRpcValue& v, const std::string& key, const std::string& where, bool required,
-                   const std::string& def = "") {
-  if (!v.hasMember(key)) {
-    if (required) throw ConfigError("relay config: " + where + " needs '" + key + "'");
-    return def;
-  }
-  if (v[key].getType() != XmlRpc::XmlRpcValue::TypeString)
-    throw ConfigError("relay config: " + where + "/" + key + " must be a string");
-  return static_cast<std::string>(v[key]);
-}
-
-inline double number(XmlRpc::XmlRpcValue& v, const std::string& key, double def, const std::string& where) {
-  if (!v.hasMember(key)) return def;
-  XmlRpc::XmlRpcValue& x = v[key];
-  if (x.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(x);
-  if (x.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(x);
-  throw ConfigError("relay config: " + where + "/" + key + " must be a number");
-}
-
-inline bool flag(XmlRpc::XmlRpcValue& v, const std::string& key, bool def, const std::string& where) {
-  if (!v.hasMember(key)) return def;
-  if (v[key].getType() != XmlRpc::XmlRpcValue::TypeBoolean)
-    throw ConfigError("relay config: " + where + "/" + key + " must be true or false");
-  return static_cast<bool>(v[key]);
-}
-
-// Calls f(entry, "key[i]") for each entry of the list parameter `key` (entries must be maps).
-template <class F>
-inline void forEachEntry(const ros::NodeHandle& pnh, const std::string& key, F f) {
-  XmlRpc::XmlRpcValue list;
-  if (!pnh.getParam(key, list)) return;
-  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) throw ConfigError("relay config: '" + key + "' must be a list");
-  for (int i = 0; i < list.size(); ++i) {
-    const std::string where = key + "[" + std::to_string(i) + "]";
-    if (list[i].getType() != XmlRpc::XmlRpcValue::TypeStruct)
-      throw ConfigError("relay config: " + where + " must be a map");
-    f(list[i], where);
-  }
-}
-
+// The configuration from the private parameters, every value through relay/config.h's tables.
 inline relay::RelayConfig loadConfig(const ros::NodeHandle& pnh) {
-  ros_util::ParamReader p(pnh);
   relay::RelayConfig c;
-  c.name = p.text("name", "");
-  c.listen_host = p.text("listen_host", "127.0.0.1");
-  c.listen_port = p.integer("listen_port", 0, -1, 65535);
-  c.auth = p.choice("auth", "hmac-sha256", {"hmac-sha256", "none"}) == "hmac-sha256";
-  c.key = p.text("key", "");
-  const std::string key_file = p.text("key_file", "");
-  if (c.auth && c.key.empty() && !key_file.empty()) c.key = relay::readKeyFile(key_file);
-  c.sim = p.flag("sim", false);
-  c.heartbeat_period = p.number("heartbeat_period", 0.2, 0.01, 10.0);
-  c.link_timeout = p.number("link_timeout", 1.0, 0.02, 60.0);
-  c.ack_delay = p.number("ack_delay", 0.5, 0.0, 10.0);
-  c.backoff_min = p.number("backoff_min", 0.1, 0.01, 10.0);
-  c.backoff_max = p.number("backoff_max", 2.0, 0.01, 60.0);
-  c.queue_messages = static_cast<std::size_t>(p.integer("queue/max_messages", 1000, 1, 1000000));
-  c.queue_bytes = static_cast<std::size_t>(p.number("queue/max_bytes", 64.0 * (1 << 20), 1024, 4e9));
-  c.max_frame_bytes = static_cast<std::size_t>(p.number("max_frame_bytes", 32.0 * (1 << 20), 1024, 1 << 30));
-  c.udp = p.flag("udp", true);
-  c.max_datagram_bytes = static_cast<std::size_t>(p.number("max_datagram_bytes", 60000, 512, 65000));
+  ros_util::readParams(ros_util::ParamReader(pnh), relay::RelayConfig::table(), c);
+  if (c.authenticated() && c.key.empty() && !c.key_file.empty()) c.key = relay::readKeyFile(c.key_file);
   c.origin = ros_util::readOrigin();  // announced at link-up: the peer vehicle must run on the same site
-  c.origin_tolerance = p.number("origin_tolerance", c.origin_tolerance, 0.0, 1e4);
-  forEachEntry(pnh, "peers", [&c](XmlRpc::XmlRpcValue& e, const std::string& where) {
-    relay::PeerConfig pc;
-    pc.name = member(e, "name", where, true);
-    const std::string addr = member(e, "address", where, false);
-    if (!addr.empty()) {
-      const auto colon = addr.rfind(':');
-      if (colon == std::string::npos) throw ConfigError("relay config: " + where + "/address must be host:port");
-      pc.host = addr.substr(0, colon);
-      try {
-        pc.port = std::stoi(addr.substr(colon + 1));
-      } catch (const std::exception&) {
-        throw ConfigError("relay config: " + where + "/address '" + addr + "' has no valid port");
-      }
-    }
-    c.peers.push_back(pc);
+  auto entries = [&pnh](const std::string& key, auto f) {
+    XmlRpc::XmlRpcValue list;
+    if (!pnh.getParam(key, list)) return;
+    if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) throw ConfigError("relay config: '" + key + "' must be a list");
+    for (int i = 0; i < list.size(); ++i) f(list[i], key + "[" + std::to_string(i) + "]");
+  };
+  entries("peers", [&c](XmlRpc::XmlRpcValue& e, const std::string& where) {
+    relay::PeerEntry pe;
+    ros_util::readEntry(e, relay::PeerEntry::table(), pe, where);
+    c.peers.push_back(pe.toConfig(where));
   });
-  forEachEntry(pnh, "topics", [&c](XmlRpc::XmlRpcValue& e, const std::string& where) {
+  entries("topics", [&c](XmlRpc::XmlRpcValue& e, const std::string& where) {
     relay::TopicConfig t;
-    t.topic = member(e, "topic", where, true);
-    t.type = member(e, "type", where, true);
-    t.direction = member(e, "direction", where, true);
-    t.remote = member(e, "remote", where, false);
-    t.reliable = flag(e, "reliable", true, where);
-    t.latched = flag(e, "latched", false, where);
-    t.compress = flag(e, "compress", false, where);
-    t.rate_hz = number(e, "rate_hz", 0.0, where);
-    if (e.hasMember("peers")) {
+    ros_util::readEntry(e, relay::TopicConfig::table(), t, where);
+    if (e.hasMember("peers")) {  // a list of names: beside the table
       XmlRpc::XmlRpcValue& l = e["peers"];
       if (l.getType() != XmlRpc::XmlRpcValue::TypeArray) throw ConfigError("relay config: " + where + "/peers must be a list");
-      for (int j = 0; j < l.size(); ++j) {
-        if (l[j].getType() != XmlRpc::XmlRpcValue::TypeString)
-          throw ConfigError("relay config: " + where + "/peers must be a list of names");
-        t.peers.push_back(static_cast<std::string>(l[j]));
-      }
+      for (int j = 0; j < l.size(); ++j) t.peers.push_back(ros_util::entryText(l[j], where + "/peers"));
     }
     c.topics.push_back(t);
   });
@@ -152,10 +79,8 @@ class RelayRos {
   void start(ros::NodeHandle nh, ros::NodeHandle pnh, const std::string& name) {
     nh_ = nh;
     relay::RelayConfig cfg;
-    double status_period = 1.0;
     try {
       cfg = relay_ros::loadConfig(pnh);
-      status_period = ros_util::ParamReader(pnh).number("status_period", 1.0, 0.05, 60.0);
     } catch (const ConfigError& e) {
       ROS_FATAL("%s", e.what());
       throw;
@@ -184,8 +109,8 @@ class RelayRos {
       else
         ROS_INFO("%s", s.c_str());
     };
-    if (cfg.auth) key_fingerprint_ = relay::keyFingerprint(cfg.key);
-    if (!cfg.auth && !cfg.sim) ROS_WARN("relay '%s': authentication is off (auth: none) on hardware", cfg.name.c_str());
+    if (cfg.authenticated()) key_fingerprint_ = relay::keyFingerprint(cfg.key);
+    if (!cfg.authenticated() && !cfg.sim) ROS_WARN("relay '%s': authentication is off (auth: none) on hardware", cfg.name.c_str());
     engine_ = std::make_unique<relay::Engine>(cfg, cb, counters_);
     for (std::size_t i = 0; i < cfg.topics.size(); ++i) {
       const auto& t = cfg.topics[i];
@@ -223,7 +148,7 @@ class RelayRos {
       ROS_INFO("relay '%s' listening on %s:%d", cfg.name.c_str(), cfg.listen_host.c_str(), engine_->listenPort());
       pnh.setParam("bound_port", engine_->listenPort());
     }
-    timer_ = nh.createWallTimer(ros::WallDuration(status_period), [this](const ros::WallTimerEvent&) { publishStatus(); });
+    timer_ = nh.createWallTimer(ros::WallDuration(cfg.status_period), [this](const ros::WallTimerEvent&) { publishStatus(); });
   }
 
  private:

@@ -70,5 +70,33 @@ std::vector<double> ParamReader::numbers(const std::string& name, const std::vec
   return v;
 }
 
+double entryNumber(XmlRpc::XmlRpcValue& v, const std::string& where) {
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(v);
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(v);
+  throw ConfigError("parameter '" + where + "' is not a number");
+}
+
+int entryInteger(XmlRpc::XmlRpcValue& v, const std::string& where) {
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeInt) throw ConfigError("parameter '" + where + "' is not an integer");
+  return static_cast<int>(v);
+}
+
+bool entryFlag(XmlRpc::XmlRpcValue& v, const std::string& where) {
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean) throw ConfigError("parameter '" + where + "' is not a boolean");
+  return static_cast<bool>(v);
+}
+
+std::string entryText(XmlRpc::XmlRpcValue& v, const std::string& where) {
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeString) throw ConfigError("parameter '" + where + "' is not a string");
+  return static_cast<std::string>(v);
+}
+
+std::vector<double> entryNumbers(XmlRpc::XmlRpcValue& v, const std::string& where) {
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeArray) throw ConfigError("parameter '" + where + "' is not a list of numbers");
+  std::vector<double> out;
+  for (int i = 0; i < v.size(); ++i) out.push_back(entryNumber(v[i], where + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
 }  // namespace ros_util
 }  // namespace offshore_gnc

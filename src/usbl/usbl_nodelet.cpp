@@ -27,7 +27,7 @@
 #include "offshore_gnc/ros/site.h"
 #include "offshore_gnc/usbl/positioning.h"
 #include "offshore_gnc/usbl/seatrac.h"
-#include "offshore_gnc/usbl/serial_port.h"
+#include "offshore_gnc/serial/serial_port.h"
 #include "offshore_gnc/usbl/session.h"
 #include "ros_usbl.h"
 
@@ -59,7 +59,7 @@ class UsblNodelet : public nodelet::Nodelet {
       frame_id_ = p.text("frame_id", "usv/usbl");
       o = ros_util::readOrigin();
       positioner_ = std::make_unique<usbl::Positioner>(usbl_ros::readMounting(p), lim);
-      port_ = std::make_unique<usbl::SerialPort>(port, baud, retry_);
+      port_ = std::make_unique<serial::SerialPort>(port, baud, retry_);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -286,7 +286,7 @@ class UsblNodelet : public nodelet::Nodelet {
   double retry_ = 1.0, water_density_ = 1000.0, surface_pressure_ = 101325.0;
   std::string frame_id_;
   std::unique_ptr<geo::LocalNed> local_;
-  std::unique_ptr<usbl::SerialPort> port_;
+  std::unique_ptr<serial::SerialPort> port_;
   usbl::StreamDecoder decoder_;
   std::mutex mutex_;  // positioner (ROS callbacks vs the I/O thread)
   std::mutex pending_mutex_;  // fixes waiting for the USV's pose (taken before mutex_, never inside it)

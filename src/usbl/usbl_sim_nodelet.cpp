@@ -21,7 +21,7 @@
 #include "offshore_gnc/ros/faults.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/usbl/beacon_sim.h"
-#include "offshore_gnc/usbl/pseudo_terminal.h"
+#include "offshore_gnc/serial/pseudo_terminal.h"
 #include "ros_usbl.h"
 
 namespace offshore_gnc {
@@ -59,7 +59,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
     }
     mount_ = cfg.mount;
     try {
-      pty_ = std::make_unique<usbl::PseudoTerminal>(link_);
+      pty_ = std::make_unique<serial::PseudoTerminal>(link_);
     } catch (const std::runtime_error& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -156,7 +156,7 @@ class UsblSimNodelet : public nodelet::Nodelet {
   }
 
   std::string link_;
-  std::unique_ptr<usbl::PseudoTerminal> pty_;
+  std::unique_ptr<serial::PseudoTerminal> pty_;
   usbl::Mounting mount_;
   std::mutex mutex_;
   std::unique_ptr<usbl::BeaconSimulator> sim_;

@@ -3,9 +3,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "micron/fuzz_check.h"
+#include "micron_sim/fuzz_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  offshore_gnc::micron::fuzzCodecOnce(data, size);
+  offshore_gnc::micron_sim::fuzzCodecOnce(data, size);
   return 0;
 }

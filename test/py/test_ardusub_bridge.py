@@ -8,20 +8,15 @@ import time
 
 import pytest
 
-from offshore_gnc.testing import MasterSet  # noqa: E402
+from offshore_gnc.testing import MasterSet, wait_until  # noqa: E402
 from offshore_gnc.testing.ardusub_peer import FakeArduSub, free_udp_port  # noqa: E402
 
 WATCHDOG = 1.0
 HEARTBEAT_TIMEOUT = 2.0
 
 
-def wait(pred, timeout, step=0.05):
-    deadline = time.time() + timeout
-    while time.time() < deadline:
-        if pred():
-            return True
-        time.sleep(step)
-    return pred()
+def wait(pred, timeout):
+    return wait_until(pred, timeout, step=0.05)
 
 
 @pytest.fixture(scope="module")

@@ -14,7 +14,7 @@ import time
 import pytest
 import yaml
 
-from offshore_gnc.testing.masters import MasterSet, free_port
+from offshore_gnc.testing import MasterSet, free_port, wait_until
 
 HERE = os.path.abspath(__file__)
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
@@ -88,15 +88,6 @@ def read_lines(path):
         return []
     with open(path) as f:
         return [l.strip() for l in f if l.strip()]
-
-
-def wait_until(pred, timeout, step=0.1):
-    deadline = time.time() + timeout
-    while time.time() < deadline:
-        if pred():
-            return True
-        time.sleep(step)
-    return pred()
 
 
 def log_text(master, name):

@@ -14,7 +14,18 @@
 
 namespace offshore_gnc {
 
-enum class ParamKind { kNumber, kInteger, kFlag, kNumbers, kChoice };
+// A number as the parameter files and docs write it: whole numbers in full (67108864, not 6.71089e+07), others
+// with six significant digits.
+inline std::string paramNumberText(double v) {
+  char b[32];
+  if (v == static_cast<double>(static_cast<long long>(v)) && v > -1e15 && v < 1e15)
+    std::snprintf(b, sizeof b, "%lld", static_cast<long long>(v));
+  else
+    std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+enum class ParamKind { kNumber, kInteger, kFlag, kNumbers, kChoice, kText };
 
 template <class P>
 struct ParamSpec {
@@ -31,6 +42,7 @@ struct ParamSpec {
   std::function<std::vector<double>(const P&)> get_numbers;  // kNumbers: lists are copied in and out, so a
   std::function<void(P&, const std::vector<double>&)> set_numbers;  // list can be an Eigen vector or fields
   std::function<std::string&(P&)> choice;
+  std::function<std::string&(P&)> string;  // kText: any text (a device, a frame, a file)
 };
 
 template <class P>
@@ -101,6 +113,15 @@ class ParamTable {
       s.choice = [m](P& p) -> std::string& { return p.*m; };
     });
   }
+  // Free text: a device, a frame id, a file (its checks, e.g. "required", are the struct's own validate()).
+  ParamTable& string(const std::string& name, std::string P::*m, const char* doc) {
+    return add(ParamKind::kText, name, 0, 0, "", doc, [m](Spec& s) { s.string = [m](P& p) -> std::string& { return p.*m; }; });
+  }
+  template <class S>
+  ParamTable& string(const std::string& name, S P::*outer, std::string S::*m, const char* doc) {
+    return add(ParamKind::kText, name, 0, 0, "", doc,
+               [outer, m](Spec& s) { s.string = [outer, m](P& p) -> std::string& { return (p.*outer).*m; }; });
+  }
   // Another struct's table for a member of this one, under a prefix ("los/" + LosParams' names).
   template <class S>
   ParamTable& nest(const std::string& prefix, S P::*outer, const ParamTable<S>& inner) {
@@ -117,6 +138,7 @@ class ParamTable {
       if (is.set_numbers)
         s.set_numbers = [outer, f = is.set_numbers](P& p, const std::vector<double>& v) { f(p.*outer, v); };
       if (is.choice) s.choice = [outer, f = is.choice](P& p) -> std::string& { return f(p.*outer); };
+      if (is.string) s.string = [outer, f = is.string](P& p) -> std::string& { return f(p.*outer); };
       specs_.push_back(std::move(s));
     }
     return *this;
@@ -127,16 +149,13 @@ class ParamTable {
   // A value as a parameter file writes it (degrees for angles kept in radians).
   static std::string text(const Spec& s, const P& p) {
     P q = p;
-    auto num = [](double v) {
-      char b[32];
-      std::snprintf(b, sizeof b, "%.6g", v);
-      return std::string(b);
-    };
+    auto num = [](double v) { return paramNumberText(v); };
     switch (s.kind) {
       case ParamKind::kNumber: return num(s.number(q) / s.scale);
       case ParamKind::kInteger: return std::to_string(s.integer(q));
       case ParamKind::kFlag: return s.flag(q) ? "true" : "false";
       case ParamKind::kChoice: return s.choice(q);
+      case ParamKind::kText: return s.string(q).empty() ? "\"\"" : s.string(q);
       case ParamKind::kNumbers: {
         std::string o = "[";
         for (double v : s.get_numbers(q)) o += (o.size() > 1 ? ", " : "") + num(v);
@@ -159,7 +178,8 @@ class ParamTable {
       switch (s.kind) {
         case ParamKind::kNumber: requireRange(n, s.number(q) / s.scale, s.lo, s.hi); break;
         case ParamKind::kInteger: requireRange(n, s.integer(q), s.lo, s.hi); break;
-        case ParamKind::kFlag: break;
+        case ParamKind::kFlag:
+        case ParamKind::kText: break;
         case ParamKind::kNumbers: {
           const auto v = s.get_numbers(q);
           if (s.size && v.size() != s.size)

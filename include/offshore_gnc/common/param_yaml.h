@@ -50,6 +50,7 @@ void readParamsYaml(const YAML::Node& root, const ParamTable<P>& t, P& p, const 
         case ParamKind::kFlag: s.flag(p) = n.as<bool>(); break;
         case ParamKind::kNumbers: s.set_numbers(p, n.as<std::vector<double>>()); break;
         case ParamKind::kChoice: s.choice(p) = n.as<std::string>(); break;
+        case ParamKind::kText: s.string(p) = n.as<std::string>(); break;
       }
     } catch (const YAML::Exception&) {
       throw ConfigError(where + " has the wrong type");

@@ -11,6 +11,7 @@
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/micron/seanet.h"
 
 namespace offshore_gnc {
@@ -23,10 +24,11 @@ struct HeadGeometry {
   bool inverted = false;
   double bearingOf(int head_units) const;  // -> clockwise from forward, [0, 2pi)
   int unitsOf(double bearing) const;       // inverse, rounded to the 1/16 gradian
+  static const ParamTable<HeadGeometry>& table();  // forward_offset_deg, inverted
 };
 
 // What the driver asks of the head. The defaults are the paper's configuration (10 m range, 90 degree forward
-// sector, 1.8 degree step); one place for the defaults and ranges: validate().
+// sector, 1.8 degree step); the names and ranges are table()'s, validate() adds the rules across fields.
 struct SonarSettings {
   double range = 10.0;               // [m]
   double sector = deg2rad(90.0);     // [rad] centred on forward; 2 pi = continuous rotation
@@ -38,13 +40,14 @@ struct SonarSettings {
   double beam_width = deg2rad(3.0);  // [rad] horizontal beam of the Micron (not in the protocol)
   HeadGeometry geometry;
   FourBitFormat four_bit;            // only with a head that sends 4-bit data (the driver asks for 8-bit)
-  std::uint8_t head_type = 0x11;     // 0x11 = DST (Micron)
+  int head_type = 0x11;     // 0x11 = DST (Micron)
   int mo_time = 25;                  // motor step delay [10 us]
   bool reboot_on_start = true;
   double reply_timeout = 1.0;        // [s] for mtHeadData after mtSendData
   double command_retry = 2.0;        // [s] between mtSendVersion / mtHeadCommand attempts
   double alive_timeout = 3.0;        // [s] without any packet: the head is reported silent
   int max_data_timeouts = 5;         // consecutive reply timeouts before the head command is sent again
+  static const ParamTable<SonarSettings>& table();
   void validate() const;             // throws ConfigError naming the parameter
   HeadCommand headCommand() const;
   int stepUnits() const;
@@ -59,6 +62,20 @@ struct Beam {
 };
 // SonarBeam.msg status bits, repeated so the core does not include generated messages.
 enum BeamStatus : std::uint16_t { kHeadReady = 1, kMotorOnBit = 2, kCentring = 4, kScanCw = 8, kSectorReverse = 16, kFault = 32 };
+
+// The MicronSonar driver's parameters (config/micron/micron.yaml): the line, the frames, the head's mount and
+// what the driver asks of the head.
+struct DriverConfig {
+  std::string port = "/dev/ttyUSB1";
+  int baud = 115200;
+  double reconnect_period = 1.0;  // [s] between reopen attempts of a vanished device
+  double device_wait = 3.0;       // [s] the device must appear within this at start
+  std::string frame_id = "auv/sonar", base_frame = "auv/base_link";
+  std::vector<double> mount{0.6, 0.0, -0.2};  // [m] head in the body frame (FRD)
+  bool publish_mount_tf = true;
+  SonarSettings sonar;
+  static const ParamTable<DriverConfig>& table();
+};
 
 class Session {
  public:

@@ -5,21 +5,29 @@
 // chosen wall, `spacing` apart, for the LOS path follower.
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
+
+#include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/param_table.h"
 
 namespace offshore_gnc {
 namespace perception {
 
+// The WallDetection nodelet's parameters (config/perception/sonar_auv.yaml): defaults here, names and ranges in
+// table(), checked by validate().
 struct WallConfig {
   double split_distance = 0.25;  // [m] eq. 7 threshold: farther points split the set
   double break_distance = 1.5;   // [m] consecutive points farther apart start a new set (no line across gaps)
-  double merge_angle = 0.1;      // [rad] collinear when directions differ less than this...
+  double merge_angle = deg2rad(6.0);  // [rad] collinear when directions differ less than this...
   double merge_distance = 0.4;   // [m] ...and each segment's ends lie this close to the other's line...
   double merge_gap = 3.0;        // [m] ...and the gap between them is at most this
   int min_points = 6;            // segments with fewer points are not walls
   double min_length = 2.0;       // [m]
   double offset = 2.0;           // [m] waypoints' distance from the wall
   double spacing = 2.0;          // [m] distance between the two waypoints
+  std::string base_frame = "auv/base_link";  // the vehicle frame whose pose places the waypoints
+  static const ParamTable<WallConfig>& table();
   void validate() const;
 };
 

@@ -1,11 +1,13 @@
 #pragma once
 // The relay's configuration: this relay, its peers and the topics it carries (docs/relay.md, "Configuration").
-// ROS-free; the ROS side fills it from the node's private parameters (src/relay/ros_relay.h).
+// ROS-free; the ROS side fills it from the node's private parameters (src/relay/ros_relay.h) through the tables
+// below: the defaults are the structs' own values, the ranges the tables', docs/parameters.md lists both.
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/geo/geo.h"
 
 namespace offshore_gnc {
@@ -21,6 +23,8 @@ struct TopicConfig {
   double rate_hz = 0.0;  // 0 = unlimited
   bool latched = false;
   bool compress = false;
+  // An entry of `topics` (its `peers` list is read beside the table).
+  static const ParamTable<TopicConfig>& table();
 };
 
 struct PeerConfig {
@@ -29,16 +33,27 @@ struct PeerConfig {
   int port = 0;
 };
 
+// An entry of `peers` as configured: the peer's name and the host:port to dial (none: the peer dials us).
+struct PeerEntry {
+  std::string name, address;
+  static const ParamTable<PeerEntry>& table();
+  // Throws ConfigError naming `where` when the address is not host:port.
+  PeerConfig toConfig(const std::string& where) const;
+};
+
 struct RelayConfig {
   std::string name;
   std::string listen_host = "127.0.0.1";
   int listen_port = 0;  // 0 = do not listen (-1 in tests: any free port)
-  bool auth = true;     // HMAC-SHA256 on every frame; off only by explicit configuration
+  // HMAC-SHA256 on every frame; "none" only by explicit configuration
+  std::string auth = "hmac-sha256";
+  bool authenticated() const { return auth != "none"; }
   // Best-effort topics go in UDP datagrams (same frames, same session keys, own replay window; loss counted,
   // never resent) when the encoded frame fits max_datagram_bytes; larger ones and latched repeats use TCP.
   bool udp = true;
-  std::size_t max_datagram_bytes = 60000;
-  std::string key;      // pre-shared key (required when auth)
+  int max_datagram_bytes = 60000;
+  std::string key;       // pre-shared key (required when authenticated)
+  std::string key_file;  // the key's file, read by the ROS side when `key` is empty (relay/key.h)
   // Simulation: any key of >= 16 bytes, the shipped config/relay/sim.key too. Off (hardware), the key must be a
   // deployment key (relay/key.h: >= 32 random bytes, not the published simulation key).
   bool sim = false;
@@ -49,12 +64,18 @@ struct RelayConfig {
   // here or at the peer: not checked.
   std::optional<geo::LatLonAlt> origin;
   double origin_tolerance = 1.0;
-  std::size_t queue_messages = 1000, queue_bytes = 64u << 20, max_frame_bytes = 32u << 20;
+  int queue_messages = 1000;
+  double queue_bytes = 64u << 20;
+  int max_frame_bytes = 32u << 20;
+  double status_period = 1.0;  // [s] /relay/link_status and diagnostics (ROS side)
   std::vector<PeerConfig> peers;
   std::vector<TopicConfig> topics;
+  // The scalar parameters (the site origin is /site/origin, peers and topics are lists of the tables above).
+  static const ParamTable<RelayConfig>& table();
 };
 
-// Fills defaults and throws ConfigError naming the offending entry.
+// Checks against the tables and across fields, fills defaults (a topic's remote name); throws ConfigError naming
+// the offending entry.
 void validate(RelayConfig& c);
 
 }  // namespace relay

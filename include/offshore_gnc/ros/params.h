@@ -3,6 +3,7 @@
 // validates the range; an unusable value throws offshore_gnc::ConfigError, which the nodelet turns into a
 // fatal error naming the parameter and the accepted range (ARCHITECTURE.md conventions).
 #include <ros/node_handle.h>
+#include <xmlrpcpp/XmlRpcValue.h>
 
 #include <string>
 #include <vector>
@@ -51,8 +52,37 @@ void readParams(const ParamReader& r, const ParamTable<P>& t, P& p, const std::s
       case ParamKind::kFlag: s.flag(p) = r.flag(n, s.flag(p)); break;
       case ParamKind::kNumbers: s.set_numbers(p, r.numbers(n, s.get_numbers(p), s.size, s.lo, s.hi)); break;
       case ParamKind::kChoice: s.choice(p) = r.choice(n, s.choice(p), s.choices); break;
+      case ParamKind::kText: s.string(p) = r.text(n, s.string(p)); break;
     }
   }
+}
+
+// One map of a list parameter (an entry of the relay's `topics`, say), read through a table like readParams:
+// each key present replaces the struct's value, type and range checked; `where` ("topics[2]") names the entry.
+// The ConfigError of a bad value names where/key.
+double entryNumber(XmlRpc::XmlRpcValue& v, const std::string& where);
+int entryInteger(XmlRpc::XmlRpcValue& v, const std::string& where);
+bool entryFlag(XmlRpc::XmlRpcValue& v, const std::string& where);
+std::string entryText(XmlRpc::XmlRpcValue& v, const std::string& where);
+std::vector<double> entryNumbers(XmlRpc::XmlRpcValue& v, const std::string& where);
+
+template <class P>
+void readEntry(XmlRpc::XmlRpcValue& entry, const ParamTable<P>& t, P& p, const std::string& where) {
+  if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct) throw ConfigError("parameter '" + where + "' must be a map");
+  for (const auto& s : t.specs()) {
+    if (!entry.hasMember(s.name)) continue;
+    XmlRpc::XmlRpcValue& v = entry[s.name];
+    const std::string n = where + "/" + s.name;
+    switch (s.kind) {
+      case ParamKind::kNumber: s.number(p) = s.scale * requireRange(n, entryNumber(v, n), s.lo, s.hi); break;
+      case ParamKind::kInteger: s.integer(p) = static_cast<int>(requireRange(n, entryInteger(v, n), s.lo, s.hi)); break;
+      case ParamKind::kFlag: s.flag(p) = entryFlag(v, n); break;
+      case ParamKind::kNumbers: s.set_numbers(p, entryNumbers(v, n)); break;
+      case ParamKind::kChoice: s.choice(p) = entryText(v, n); break;
+      case ParamKind::kText: s.string(p) = entryText(v, n); break;
+    }
+  }
+  t.validate(p, where + "/");
 }
 
 }  // namespace ros_util

@@ -12,6 +12,7 @@ import rostest
 from nav_msgs.msg import Odometry
 
 from offshore_gnc.msg import Cola2NavSts, Cola2Setpoints, ThrusterSetpoints
+from offshore_gnc.testing.poll import wait_until
 
 # COLA2's published md5sum of cola2_msgs/NavSts (from its generated message code).
 COLA2_NAVSTS_MD5 = "0ba23d6197aed7a9fab08613fe8fc381"
@@ -47,13 +48,7 @@ class Cola2BridgeTest(unittest.TestCase):
         return cb
 
     def _wait(self, pred, timeout):
-        deadline = time.time() + timeout
-        while time.time() < deadline:
-            with self.lock:
-                if pred():
-                    return True
-            time.sleep(0.05)
-        return False
+        return wait_until(pred, timeout, step=0.05, lock=self.lock)
 
     def test_0_messages_match_cola2(self):
         self.assertEqual(Cola2NavSts._md5sum, COLA2_NAVSTS_MD5)

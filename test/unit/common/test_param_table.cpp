@@ -21,6 +21,7 @@ struct Outer {
   int count = 3;
   bool on = true;
   std::string mode = "a";
+  std::string device;  // free text
   std::vector<double> list{1.0, 2.0};
   Inner inner;
   static const ParamTable<Outer>& table() {
@@ -30,6 +31,7 @@ struct Outer {
                                            .integer("count", &Outer::count, 1, 9, "count")
                                            .flag("on", &Outer::on, "switch")
                                            .choice("mode", &Outer::mode, {"a", "b"}, "mode")
+                                           .string("device", &Outer::device, "any text")
                                            .numbers("list", &Outer::list, 2, -1.0, 5.0, "", "two values")
                                            .nest("inner/", &Outer::inner, Inner::table());
     return t;
@@ -70,5 +72,13 @@ TEST(ParamTable, NestedNamesAndFileText) {
   EXPECT_EQ(ParamTable<Outer>::text(*Outer::table().find("angle_deg"), o), "5.72958");
   EXPECT_EQ(ParamTable<Outer>::text(*Outer::table().find("list"), o), "[1, 2]");
   EXPECT_EQ(ParamTable<Outer>::text(*Outer::table().find("on"), o), "true");
+  EXPECT_EQ(ParamTable<Outer>::text(*Outer::table().find("device"), o), "\"\"");  // empty text as a file writes it
+  Outer::table().find("device")->string(o) = "/dev/ttyUSB0";
+  EXPECT_EQ(ParamTable<Outer>::text(*Outer::table().find("device"), o), "/dev/ttyUSB0");
+  EXPECT_NO_THROW(Outer::table().validate(o));  // any text
+  EXPECT_EQ(paramNumberText(67108864.0), "67108864");  // whole numbers in full
+  EXPECT_EQ(paramNumberText(-1e6), "-1000000");
+  EXPECT_EQ(paramNumberText(0.001), "0.001");
+  EXPECT_EQ(paramNumberText(1e20), "1e+20");
   EXPECT_EQ(Outer::table().find("nope"), nullptr);
 }

@@ -21,6 +21,12 @@ TEST(Reconfigure, GuidanceCfgMatchesTheTable) {
   }
 }
 
+TEST(Reconfigure, GuidanceCfgDefaultsAreTheCodes) {
+  const guidance::GuidanceParams code;  // the struct's defaults (los.h, sbb.h); a preset overrides them at start
+  for (const auto& [name, value] : ros_util::cfgDefaults<GuidanceConfig>())
+    EXPECT_EQ(ros_util::cfgDefaultMismatch(name, value, guidance::GuidanceParams::table(), code), "");
+}
+
 TEST(Reconfigure, RoundTripsThroughTheTable) {
   guidance::GuidanceParams p = guidance::GuidanceParams::preset("usv");
   p.los.kp = 0.25;

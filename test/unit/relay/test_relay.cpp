@@ -170,7 +170,7 @@ TEST(RelayConfig, ValidationNamesTheProblem) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("key"), std::string::npos);
   }
-  c.auth = false;
+  c.auth = "none";
   c.peers.push_back({"auv", "127.0.0.1", 1234});
   c.topics.push_back({"/target", "offshore_gnc/Target", "sideways", "", {}, true, 0, false, false});
   try {
@@ -198,7 +198,7 @@ class Pair {
   static RelayConfig config(const std::string& name, const std::string& key, int peer_port) {
     RelayConfig c;
     c.name = name;
-    c.auth = !key.empty();
+    c.auth = key.empty() ? "none" : "hmac-sha256";
     c.key = key;
     c.sim = true;  // the test keys are not deployment keys
     c.heartbeat_period = 0.05;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "offshore_gnc/common/counters.h"
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/micron/seanet.h"
 #include "offshore_gnc/micron/session.h"
 #include "offshore_gnc/models/state.h"
@@ -16,16 +17,20 @@
 #include "offshore_gnc/sim/world.h"
 
 namespace offshore_gnc {
-namespace micron {
+namespace micron_sim {
 
 struct EmulatorConfig {
-  HeadGeometry geometry;           // must match the driver's (same head, same mounting)
+  micron::HeadGeometry geometry;   // must match the driver's (same head, same mounting)
   double sound_speed = 1500.0;     // [m/s] of the emulated water
   double recentre_time = 1.0;      // [s] after power-up / mtReBoot before the head is centred
   double alive_period = 1.0;       // [s]
   double ping_period = 0.05;       // [s] from mtSendData to mtHeadData (two-way travel + motor step)
   sim::SonarConfig model;          // noise, beam widths, mount: range/bins/step/sector come from the command
-  std::uint64_t seed = 1;
+  int seed = 1;
+  // The MicronEmulator nodelet's parameters: `port` (the pseudo-terminal's path) and `scenario` (the world the
+  // head sees) beside these.
+  std::string port = "/tmp/micron_sim", scenario;
+  static const ParamTable<EmulatorConfig>& table();
 };
 
 class HeadEmulator {
@@ -38,21 +43,21 @@ class HeadEmulator {
   // The vehicle's true state (NED), for the beams drawn from now on.
   void setVehicle(const VehicleState& s) { vehicle_ = s; have_vehicle_ = true; }
   bool configured() const { return model_ != nullptr; }
-  const StreamDecoder& decoder() const { return decoder_; }
+  const micron::StreamDecoder& decoder() const { return decoder_; }
   // requests, beams, reboots, bad_head_commands, no_vehicle_state, unsupported, ...
   const Counters& counters() const { return counters_; }
 
  private:
-  std::string handle(const Message& m, double now);
+  std::string handle(const micron::Message& m, double now);
   std::uint8_t headInf(double now) const;
   EmulatorConfig cfg_;
   sim::World world_;
-  StreamDecoder decoder_;
-  std::vector<StreamDecoder::Event> events_;
+  micron::StreamDecoder decoder_;
+  std::vector<micron::StreamDecoder::Event> events_;
   double powered_at_ = 0.0, next_alive_ = 0.0, configured_at_ = -1.0;
   bool started_ = false, ping_pending_ = false;
   double ping_due_ = 0.0;
-  HeadCommand command_;
+  micron::HeadCommand command_;
   std::unique_ptr<sim::Sonar> model_;
   sim::SonarBeamReading beam_;
   VehicleState vehicle_;
@@ -60,5 +65,5 @@ class HeadEmulator {
   Counters counters_;
 };
 
-}  // namespace micron
+}  // namespace micron_sim
 }  // namespace offshore_gnc

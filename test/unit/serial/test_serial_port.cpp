@@ -1,5 +1,5 @@
 // The serial layer on real pseudo-terminals: raw bytes both ways, the device disappearing (pty master closed,
-// symlink gone) and coming back under the same path.
+// symlink gone) and coming back under the same path; an emulator's pseudo-terminal seen through a serial port.
 #include <gtest/gtest.h>
 #include <pty.h>
 #include <termios.h>
@@ -10,10 +10,10 @@
 #include <thread>
 
 #include "offshore_gnc/common/validate.h"
-#include "offshore_gnc/usbl/seatrac.h"
-#include "offshore_gnc/usbl/serial_port.h"
+#include "offshore_gnc/serial/pseudo_terminal.h"
+#include "offshore_gnc/serial/serial_port.h"
 
-using namespace offshore_gnc::usbl;
+using namespace offshore_gnc::serial;
 
 namespace {
 struct Pty {
@@ -49,10 +49,12 @@ TEST(SerialPort, RawBytesBothWays) {
   Pty pty;
   SerialPort port(pty.name, 115200, 0.05);
   ASSERT_TRUE(port.ensureOpen()) << port.lastError();
-  const std::string frame = encodeFrame(Message{false, StatusReply{CID_PING_ERROR, 0x34, 2}});
+  const std::string frame = std::string("$43340266D5\r\n") + '\0' + "\xff\n";  // a SeaTrac reply, then binary
   ASSERT_EQ(::write(pty.master, frame.data(), frame.size()), static_cast<ssize_t>(frame.size()));
-  EXPECT_EQ(readFor(port, 2.0), frame);  // CR LF untouched (raw mode)
-  const std::string cmd = encodeFrame(Message{true, PingSend{2, MSG_REQU}});
+  std::string got = readFor(port, 2.0);
+  if (got.size() < frame.size()) got += readFor(port, 0.5);
+  EXPECT_EQ(got, frame);  // CR LF and binary bytes untouched (raw mode)
+  const std::string cmd = "#40020680B6\r\n";
   ASSERT_TRUE(port.write(cmd));
   char buf[64] = {};
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -80,7 +82,7 @@ TEST(SerialPort, SurvivesTheDeviceDisappearingAndComingBack) {
   // Plugged back in (a new pty under the same name).
   Pty again;
   ASSERT_EQ(::symlink(again.name.c_str(), link.c_str()), 0);
-  const std::string frame = encodeFrame(Message{false, StatusReply{CID_PING_SEND, 0, 2}});
+  const std::string frame = "$400002D400\r\n";
   std::string got;
   for (int i = 0; i < 100 && got.empty(); ++i) {
     if (port.isOpen()) {
@@ -95,4 +97,23 @@ TEST(SerialPort, SurvivesTheDeviceDisappearingAndComingBack) {
 
 TEST(SerialPort, UnsupportedBaudIsAConfigError) {
   EXPECT_THROW(SerialPort("/dev/null", 12345), offshore_gnc::ConfigError);
+}
+
+TEST(PseudoTerminal, AnEmulatorsLineAsADriverSeesIt) {
+  const std::string link = "/tmp/serial_pty_test_" + std::to_string(::getpid());
+  std::string got;
+  {
+    PseudoTerminal pty(link);
+    SerialPort port(link, 115200, 0.05);
+    ASSERT_TRUE(port.ensureOpen()) << port.lastError();
+    ASSERT_TRUE(port.write(std::string("@\x00\x0d\x0a", 4)));  // raw: no echo, no CR/LF translation
+    std::uint8_t buf[16];
+    std::size_t n = 0;
+    for (int i = 0; i < 50 && n < 4; ++i) n += pty.read(buf + n, sizeof buf - n, 20);
+    EXPECT_EQ(std::string(reinterpret_cast<char*>(buf), n), std::string("@\x00\x0d\x0a", 4));
+    ASSERT_TRUE(pty.write("%reply\n"));
+    got = readFor(port, 2.0);
+  }
+  EXPECT_EQ(got, "%reply\n");
+  EXPECT_NE(::access(link.c_str(), F_OK), 0);  // the link goes with the pseudo-terminal
 }

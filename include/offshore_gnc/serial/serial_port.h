@@ -9,7 +9,10 @@
 #include "offshore_gnc/common/counters.h"
 
 namespace offshore_gnc {
-namespace usbl {
+namespace serial {
+
+// The devices' clock: steady seconds, also while a simulated /clock runs (retries, the drivers' timeouts).
+double monotonic();
 
 class SerialPort {
  public:
@@ -42,5 +45,5 @@ class SerialPort {
   Counters counters_;
 };
 
-}  // namespace usbl
+}  // namespace serial
 }  // namespace offshore_gnc

@@ -1,16 +1,18 @@
-// Invariants of the SeaNet codec and the Micron driver on arbitrary bytes (test/support/micron/fuzz_check.h).
-#include "micron/fuzz_check.h"
+// Invariants of the SeaNet codec and the Micron driver on arbitrary bytes (test/support/micron_sim/fuzz_check.h).
+#include "micron_sim/fuzz_check.h"
 
 #include <cmath>
 #include <cstdlib>
 #include <vector>
 
-#include "offshore_gnc/micron/emulator.h"
+#include "offshore_gnc/micron_sim/emulator.h"
 #include "offshore_gnc/micron/seanet.h"
 #include "offshore_gnc/micron/session.h"
 
 namespace offshore_gnc {
-namespace micron {
+namespace micron_sim {
+
+using namespace micron;
 
 namespace {
 std::vector<std::string> decodeAll(const std::uint8_t* data, std::size_t n, std::size_t chunk) {
@@ -57,5 +59,5 @@ std::size_t fuzzCodecOnce(const std::uint8_t* data, std::size_t n) {
   return packets;
 }
 
-}  // namespace micron
+}  // namespace micron_sim
 }  // namespace offshore_gnc

@@ -5,10 +5,14 @@
 #include <utility>
 #include <vector>
 
+#include "offshore_gnc/can/emulator.h"
+#include "offshore_gnc/can/gateway.h"
 #include "offshore_gnc/closed_loop/stacks.h"
 #include "offshore_gnc/control/control_loop.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/guidance/pipeline.h"
+#include "offshore_gnc/micron/session.h"
+#include "offshore_gnc/micron_sim/emulator.h"
 #include "offshore_gnc/mission/mission.h"
 #include "offshore_gnc/navigation/auv_navigation_params.h"
 #include "offshore_gnc/navigation/auv_navigator.h"
@@ -16,6 +20,8 @@
 #include "offshore_gnc/perception/lidar_targets.h"
 #include "offshore_gnc/perception/sensor_frame.h"
 #include "offshore_gnc/perception/sonar_targets.h"
+#include "offshore_gnc/perception/wall_detection.h"
+#include "offshore_gnc/relay/config.h"
 #include "offshore_gnc/safety/supervisor.h"
 #include "offshore_gnc/sim/contact.h"
 #include "offshore_gnc/sim/radio.h"
@@ -39,22 +45,18 @@ void table(const char* title, const char* where, const ParamTable<P>& t,
     std::printf("| `%s%s` |", prefix.c_str(), s.name.c_str());
     for (const auto& c : columns) std::printf(" %s |", ParamTable<P>::text(s, c.second).c_str());
     std::string r;
-    char b[96];
+    const std::string range = paramNumberText(s.lo) + " .. " + paramNumberText(s.hi);
     switch (s.kind) {
       case ParamKind::kNumber:
-      case ParamKind::kInteger:
-        std::snprintf(b, sizeof b, "%.6g .. %.6g", s.lo, s.hi);
-        r = b;
-        break;
+      case ParamKind::kInteger: r = range; break;
       case ParamKind::kNumbers:
-        std::snprintf(b, sizeof b, "%s%.6g .. %.6g each", s.size ? (std::to_string(s.size) + " values, ").c_str() : "",
-                      s.lo, s.hi);
-        r = b;
+        r = (s.size ? std::to_string(s.size) + " values, " : std::string()) + range + " each";
         break;
       case ParamKind::kFlag: r = "true, false"; break;
       case ParamKind::kChoice:
         for (const auto& c : s.choices) r += (r.empty() ? "" : ", ") + c;
         break;
+      case ParamKind::kText: r = "text"; break;
     }
     std::printf(" %s | %s | %s |\n", r.c_str(), s.unit.c_str(), s.doc.c_str());
   }
@@ -131,10 +133,27 @@ int main() {
         perception::LidarConfig::table(), {{"default", perception::LidarConfig()}});
   table("Sonar targets", "`config/perception/sonar_auv.yaml` -> the SonarTargets and WallDetection nodelets.",
         perception::SonarConfig::table(), {{"default", perception::SonarConfig()}});
+  table("Wall detection", "`config/perception/sonar_auv.yaml` -> the WallDetection nodelet (Publication II).",
+        perception::WallConfig::table(), {{"default", perception::WallConfig()}});
   table("Sensor frames", "both perception files: where targets are put and how long a frame waits for its pose.",
         perception::SensorFrameParams::table(), {{"default", perception::SensorFrameParams()}});
   table("USBL session", "`config/usbl/usbl.yaml` -> the Usbl nodelet's transceiver session.",
         usbl::SessionParams::table(), {{"default", usbl::SessionParams()}});
+  table("Micron sonar", "`config/micron/micron.yaml` -> the MicronSonar driver (docs/hardware.md).",
+        micron::DriverConfig::table(), {{"default", micron::DriverConfig()}});
+  table("Micron emulator", "the MicronEmulator nodelet's private parameters (a head on a pseudo-terminal).",
+        micron_sim::EmulatorConfig::table(), {{"default", micron_sim::EmulatorConfig()}});
+  table("Relay", "`config/relay/<vehicle>.yaml` -> relay_node or the Relay nodelet (docs/relay.md).",
+        relay::RelayConfig::table(), {{"default", relay::RelayConfig()}});
+  table("Relay peers", "each entry of the relay's `peers` list.", relay::PeerEntry::table(),
+        {{"default", relay::PeerEntry()}}, "peers[]/");
+  table("Relay topics", "each entry of the relay's `topics` list (and `peers`: the peers it goes to or is taken from, "
+        "all when empty).", relay::TopicConfig::table(), {{"default", relay::TopicConfig()}}, "topics[]/");
+  table("CAN gateway", "`config/can/usv.yaml` -> the CanGateway nodelet (docs/can.md).", can::GatewayConfig::table(),
+        {{"default", can::GatewayConfig()}});
+  table("CAN emulator",
+        "`config/can/usv.yaml` -> the CanEmulator nodelet (`launch/can_usv.launch emulate:=true`, docs/can.md).",
+        can::EmulatorConfig::table(), {{"default", can::EmulatorConfig()}});
   table("Safety supervisor", "the vehicles' supervisor rules (docs/safety.md); `usv` and `auv` are the presets.",
         safety::SupervisorConfig::table(), {{"usv", safety::usvDefaults()}, {"auv", safety::auvDefaults()}});
   for (const auto& v : {std::make_pair("USV", safety::usvDefaults()), std::make_pair("AUV", safety::auvDefaults())}) {

@@ -7,11 +7,12 @@
 #include <cmath>
 
 #include "offshore_gnc/common/validate.h"
-#include "offshore_gnc/micron/emulator.h"
+#include "offshore_gnc/micron_sim/emulator.h"
 #include "offshore_gnc/micron/session.h"
 
 using namespace offshore_gnc;
 using namespace offshore_gnc::micron;
+using namespace offshore_gnc::micron_sim;
 
 namespace {
 struct Bench {

@@ -5,7 +5,6 @@ driver decoded (90 degree forward sector, 1.8 degree step, head ready), with the
 import math
 import sys
 import threading
-import time
 import unittest
 
 import rospy
@@ -14,6 +13,7 @@ import yaml
 from diagnostic_msgs.msg import DiagnosticArray
 
 from offshore_gnc.msg import SonarBeam, TargetArray
+from offshore_gnc.testing.poll import wait_until
 
 SCENARIO = yaml.safe_load(open(sys.argv[1]))
 
@@ -42,13 +42,7 @@ class MicronE2e(unittest.TestCase):
                 cls.diag[s.name] = s
 
     def _wait(self, pred, timeout):
-        deadline = time.time() + timeout
-        while time.time() < deadline:
-            with self.lock:
-                if pred():
-                    return True
-            time.sleep(0.1)
-        return False
+        return wait_until(pred, timeout, step=0.1, lock=self.lock)
 
     def test_target_found_at_the_scenario_position(self):
         tg = SCENARIO["targets"][0]

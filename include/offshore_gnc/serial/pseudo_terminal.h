@@ -7,7 +7,7 @@
 #include <string>
 
 namespace offshore_gnc {
-namespace usbl {
+namespace serial {
 
 class PseudoTerminal {
  public:
@@ -28,5 +28,5 @@ class PseudoTerminal {
   int master_ = -1, slave_ = -1;
 };
 
-}  // namespace usbl
+}  // namespace serial
 }  // namespace offshore_gnc

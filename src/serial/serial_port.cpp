@@ -1,4 +1,5 @@
-#include "offshore_gnc/usbl/serial_port.h"
+// Serial lines (include/offshore_gnc/serial/serial_port.h).
+#include "offshore_gnc/serial/serial_port.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -13,12 +14,13 @@
 #include "offshore_gnc/common/validate.h"
 
 namespace offshore_gnc {
-namespace usbl {
+namespace serial {
 
-namespace {
-double monotonicS() {
+double monotonic() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
+
+namespace {
 speed_t baudConstant(int baud) {
   switch (baud) {
     case 9600: return B9600;
@@ -48,12 +50,12 @@ void SerialPort::close() {
 void SerialPort::lost(const std::string& what) {
   last_error_ = what + ": " + std::strerror(errno);
   close();
-  next_try_s_ = monotonicS() + retry_period_s_;
+  next_try_s_ = monotonic() + retry_period_s_;
 }
 
 bool SerialPort::ensureOpen() {
   if (fd_ >= 0) return true;
-  if (monotonicS() < next_try_s_) return false;
+  if (monotonic() < next_try_s_) return false;
   const int fd = ::open(path_.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
     counters_.increment("open_failures");
@@ -129,5 +131,5 @@ bool SerialPort::write(const std::string& bytes) {
   return true;
 }
 
-}  // namespace usbl
+}  // namespace serial
 }  // namespace offshore_gnc

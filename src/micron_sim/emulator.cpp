@@ -1,23 +1,44 @@
-// Micron head emulator (include/offshore_gnc/micron/emulator.h).
-#include "offshore_gnc/micron/emulator.h"
+// Micron head emulator (include/offshore_gnc/micron_sim/emulator.h).
+#include "offshore_gnc/micron_sim/emulator.h"
 
 #include <cmath>
 
 #include "offshore_gnc/common/validate.h"
 
 namespace offshore_gnc {
-namespace micron {
+namespace micron_sim {
+
+using namespace micron;  // the SeaNet protocol's names
 
 namespace {
 constexpr double kAdIntervalS = 640e-9;
 constexpr double kConfigAckTime = 0.3;  // [s] HeadInf shows SentCfg + NoParams this long, then only SentCfg
 }  // namespace
 
+const ParamTable<EmulatorConfig>& EmulatorConfig::table() {
+  using E = EmulatorConfig;
+  static const ParamTable<E> t =
+      ParamTable<E>()
+          .string("port", &E::port, "the pseudo-terminal's path (a symlink), the driver's `port`")
+          .string("scenario", &E::scenario, "the scenario file whose world the head sees: required")
+          .nest("", &E::geometry, HeadGeometry::table())
+          .number("sound_speed", &E::sound_speed, 1300, 1700, "m/s", "of the emulated water")
+          .number("recentre_time", &E::recentre_time, 0, 60, "s",
+                  "after power-up or mtReBoot before the head is centred")
+          .number("ping_period", &E::ping_period, 0.001, 5, "s",
+                  "from mtSendData to mtHeadData (travel and motor step)")
+          .numberAt("noise_level", [](E& e) -> double& { return e.model.noise_level; }, 0, 255, "",
+                    "mean speckle intensity of the simulator's sonar model")
+          .list("mount", 3, -10, 10, "m", "head in the AUV's body frame (FRD), as the driver's `mount`",
+                [](const E& e) { return std::vector<double>{e.model.mount.x(), e.model.mount.y(), e.model.mount.z()}; },
+                [](E& e, const std::vector<double>& v) { e.model.mount = {v[0], v[1], v[2]}; })
+          .integer("seed", &E::seed, 0, 1 << 30, "the speckle's random seed");
+  return t;
+}
+
 HeadEmulator::HeadEmulator(const EmulatorConfig& cfg, const sim::World& world) : cfg_(cfg), world_(world) {
-  requireRange("sound_speed", cfg.sound_speed, 1300, 1700);
-  requireRange("recentre_time", cfg.recentre_time, 0, 60);
-  requireRange("alive_period", cfg.alive_period, 0.05, 10);
-  requireRange("ping_period", cfg.ping_period, 0.001, 5);
+  EmulatorConfig::table().validate(cfg);
+  requireRange("alive_period", cfg.alive_period, 0.05, 10);  // the head's own, no parameter
 }
 
 std::uint8_t HeadEmulator::headInf(double now) const {
@@ -72,7 +93,7 @@ std::string HeadEmulator::handle(const Message& m, double now) {
     const int forward = cfg_.geometry.unitsOf(0.0);
     if (!(hc->hd_ctrl & kCont) && std::abs(centre - forward) > 1) counters_.increment("sector_not_centred");
     try {
-      model_ = std::make_unique<sim::Sonar>(sc, world_, cfg_.seed);
+      model_ = std::make_unique<sim::Sonar>(sc, world_, static_cast<std::uint64_t>(cfg_.seed));
     } catch (const ConfigError&) {
       counters_.increment("bad_head_commands");  // the head keeps NoParams
       model_.reset();
@@ -150,5 +171,5 @@ std::string HeadEmulator::poll(double now) {
   return out;
 }
 
-}  // namespace micron
+}  // namespace micron_sim
 }  // namespace offshore_gnc

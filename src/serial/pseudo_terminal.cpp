@@ -1,5 +1,5 @@
-// Pseudo-terminal for serial-device emulators (include/offshore_gnc/usbl/pseudo_terminal.h).
-#include "offshore_gnc/usbl/pseudo_terminal.h"
+// Pseudo-terminal for serial-device emulators (include/offshore_gnc/serial/pseudo_terminal.h).
+#include "offshore_gnc/serial/pseudo_terminal.h"
 
 #include <poll.h>
 #include <pty.h>
@@ -12,7 +12,7 @@
 #include <utility>
 
 namespace offshore_gnc {
-namespace usbl {
+namespace serial {
 
 PseudoTerminal::PseudoTerminal(std::string link) : link_(std::move(link)) {
   if (::openpty(&master_, &slave_, nullptr, nullptr, nullptr) != 0)
@@ -50,5 +50,5 @@ bool PseudoTerminal::write(const std::string& bytes) {
   return bytes.empty() || ::write(master_, bytes.data(), bytes.size()) == static_cast<ssize_t>(bytes.size());
 }
 
-}  // namespace usbl
+}  // namespace serial
 }  // namespace offshore_gnc
