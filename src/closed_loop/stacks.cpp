@@ -157,9 +157,9 @@ UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
       mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {
   if (!cfg.safety.region.empty()) mission_.setRegion(safety::Region::fromList(cfg.safety.region));
-  double bow = 0.0;  // the recovery distance is the bow's (as the UsvMission nodelet reads the outline)
-  for (std::size_t i = 0; i + 1 < cfg.hull.outline.size(); i += 2) bow = std::max(bow, cfg.hull.outline[i]);
-  mission_.setBowReach(bow);
+  // the recovery distance is the bow's, a hold keeps the hull clear (as the nodelets read the outline)
+  mission_.setBowReach(cfg.hull.ahead());
+  guidance_.setHullReach({cfg.hull.ahead(), cfg.hull.astern(), cfg.hull.abeam()});
 }
 
 void UsvStack::pathToGuidance() {

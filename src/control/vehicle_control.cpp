@@ -349,10 +349,12 @@ void Girona500Controller::updateCrab(const MotionReference& r, const Eigen::Vect
   // the demand is followed in both modes: a hold that passes through a moment of following keeps what it learnt
   force_lp_ += (p_.dt / (p_.crab_tf + p_.dt)) * (f_ned - force_lp_);
   // The bow turns from guidance's heading (which already turns toward the leg) toward the demand, only as far as
-  // needed to leave the sway thruster at most crab_force of it. |along|: a demand that brakes (a following
-  // current) crabs as one that pushes, never turns the stern forward.
+  // needed to leave the sway thruster at most crab_force of it. A demand astern (a following current, a hold
+  // pushed back) turns the stern toward it, as a demand ahead turns the bow: the bow never turns more than 90
+  // degrees, and the surge thruster, backing, takes the demand off the sway thruster either way.
   const Eigen::Vector2d u(std::cos(r.heading), std::sin(r.heading)), v(-u.y(), u.x());
-  const double beta = std::atan2(force_lp_.dot(v), std::abs(force_lp_.dot(u)));
+  const double along = force_lp_.dot(u);
+  const double beta = std::atan2(along < 0.0 ? -force_lp_.dot(v) : force_lp_.dot(v), std::abs(along));
   const double magnitude = force_lp_.norm();
   const double keep = magnitude > p_.crab_force ? std::asin(p_.crab_force / magnitude) : M_PI / 2;
   const double a = std::copysign(std::max(0.0, std::abs(beta) - keep), beta);

@@ -17,6 +17,7 @@
 #include <mutex>
 
 #include "offshore_gnc/guidance/pipeline.h"
+#include "offshore_gnc/models/hull.h"
 #include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/markers.h"
@@ -36,6 +37,12 @@ class GuidanceNodelet : public nodelet::Nodelet {
       ros_util::readParams(p, guidance::GuidanceParams::table(), gp);
       frame_ = p.text("frame_id", "map_ned");
       pipeline_ = std::make_unique<guidance::GuidancePipeline>(gp);
+      if (gp.vehicle == "usv") {  // a hold keeps the hull clear: its outline of the vehicle config (vehicle/outline)
+        models::HullFootprint hull;
+        ros_util::readParams(ros_util::ParamReader(nh), models::HullFootprint::table(), hull);
+        hull.validate();
+        pipeline_->setHullReach({hull.ahead(), hull.astern(), hull.abeam()});
+      }
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;

@@ -184,7 +184,7 @@ void GuidancePipeline::keepHoldClear(double t, GuidanceOutput& out) {
   if (!p_.sbb_enabled || t - obstacles_time_ > p_.obstacle_timeout) return;
   const Eigen::Vector2d asked = out.reference.point.head<2>();
   if (!(refused_hold_ - asked).isZero(0.1)) moved_hold_.reset();  // another hold point: choose afresh
-  const SafeHold h = safeHoldPoint(asked, out.reference.heading, obstacles_, p_.sbb, moved_hold_);
+  const SafeHold h = safeHoldPoint(asked, out.reference.heading, obstacles_, p_.sbb, moved_hold_, hull_);
   if (!h.moved) return;
   if (!moved_hold_) counters_.increment("hold_point_in_box");
   refused_hold_ = asked;

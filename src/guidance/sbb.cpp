@@ -240,7 +240,7 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
 }
 
 SafeHold safeHoldPoint(const Eigen::Vector2d& point, double heading, const std::vector<SbbObstacle>& obstacles,
-                       const SbbParams& p, const std::optional<Eigen::Vector2d>& previous) {
+                       const SbbParams& p, const std::optional<Eigen::Vector2d>& previous, const HullReach& hull) {
   SafeHold out;
   out.point = point;
   if (!point.allFinite() || !std::isfinite(heading) || p.hold_clearance <= 0.0) return out;
@@ -254,7 +254,13 @@ SafeHold safeHoldPoint(const Eigen::Vector2d& point, double heading, const std::
     if (!o.origin.allFinite() || !std::isfinite(o.length) || !std::isfinite(o.width)) continue;
     SbbParams at_rest = p;
     at_rest.safety_x = at_rest.safety_y = p.hold_clearance;
-    rs.push_back(rectOf(o, f, at_rest));
+    Rect r = rectOf(o, f, at_rest);
+    // the hull at q (heading along the frame) overlaps the box exactly when q is in the box grown by its reach
+    r.s_lo -= hull.ahead;
+    r.s_hi += hull.astern;
+    r.e_lo -= hull.abeam;
+    r.e_hi += hull.abeam;
+    rs.push_back(r);
   }
   auto inside = [&](const Eigen::Vector2d& q, std::vector<std::uint32_t>* ids) {
     bool in = false;

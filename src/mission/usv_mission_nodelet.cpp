@@ -15,11 +15,11 @@
 #include <memory>
 
 #include "offshore_gnc/mission/mission.h"
+#include "offshore_gnc/models/hull.h"
 #include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/safety/supervisor.h"
-#include "offshore_gnc/sim/contact.h"
 #include "ros_mission.h"
 
 namespace offshore_gnc {
@@ -39,12 +39,10 @@ class UsvMissionNodelet : public nodelet::Nodelet {
       ros_util::readParams(ros_util::ParamReader(ros::NodeHandle(nh, "safety")), safety::SupervisorConfig::table(), sc);
       if (!sc.region.empty()) mission_->setRegion(safety::Region::fromList(sc.region));
       // the recovery distance is the bow's: the hull's outline of the vehicle config (/usv/vehicle/outline)
-      sim::HullFootprint hull;
-      ros_util::readParams(ros_util::ParamReader(nh), sim::HullFootprint::table(), hull);
+      models::HullFootprint hull;
+      ros_util::readParams(ros_util::ParamReader(nh), models::HullFootprint::table(), hull);
       hull.validate();
-      double bow = 0.0;
-      for (std::size_t i = 0; i + 1 < hull.outline.size(); i += 2) bow = std::max(bow, hull.outline[i]);
-      mission_->setBowReach(bow);
+      mission_->setBowReach(hull.ahead());
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;

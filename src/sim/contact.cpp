@@ -27,28 +27,6 @@ BgPolygon toBg(const Polygon& p) {
 }
 }  // namespace
 
-const ParamTable<HullFootprint>& HullFootprint::table() {
-  using H = HullFootprint;
-  static const ParamTable<H> t = ParamTable<H>().numbers(
-      "vehicle/outline", &H::outline, 0, -100.0, 100.0, "m",
-      "the hull's waterline outline, body x forward, y starboard, about the reference point: x0, y0, x1, y1, ...");
-  return t;
-}
-
-void HullFootprint::validate() const {
-  if (outline.size() < 6 || outline.size() % 2 != 0)
-    throw ConfigError("parameter 'vehicle/outline' needs at least 3 corners as x, y pairs, has " +
-                      std::to_string(outline.size()) + " values");
-  table().validate(*this);
-}
-
-Polygon HullFootprint::placed(const Eigen::Vector2d& ne, double yaw) const {
-  const Eigen::Rotation2Dd r(yaw);  // body (x forward, y starboard) -> NED (north, east)
-  Polygon p;
-  for (std::size_t i = 0; i + 1 < outline.size(); i += 2) p.push_back(ne + r * Eigen::Vector2d(outline[i], outline[i + 1]));
-  return p;
-}
-
 double hullClearance(const HullFootprint& hull, const Eigen::Vector2d& ne, double yaw, const World& world,
                      const std::vector<Vessel>& extra, std::string* nearest) {
   const BgPolygon h = toBg(hull.placed(ne, yaw));

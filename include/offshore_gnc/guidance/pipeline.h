@@ -54,6 +54,8 @@ class GuidancePipeline {
   void rejectPath(const std::string& why);
   // Obstacles seen at time t (NED). Non-finite geometry is dropped and counted.
   void setObstacles(const std::vector<SbbObstacle>& obstacles, double t);
+  // The hull's reach about the reference point: a hold point keeps the hull, not the point, clear (none: the point).
+  void setHullReach(const HullReach& hull) { hull_ = hull; }
   // Navigation state at time t.
   void setState(const VehicleState& s, double t);
 
@@ -82,6 +84,7 @@ class GuidancePipeline {
   bool have_state_ = false, new_path_ = false, replan_ = false, planned_changed_ = false, boxes_changed_ = false;
   std::string reject_reason_;
   Eigen::Vector2d refused_hold_ = Eigen::Vector2d::Constant(1e300);  // the last hold point refused
+  HullReach hull_;
   std::optional<Eigen::Vector2d> moved_hold_;                        // ... and where it was moved
   Counters counters_;
 };

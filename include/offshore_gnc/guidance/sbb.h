@@ -76,13 +76,20 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
 // (`refused_by` names the obstacles), or, given `previous` (where the last such move put it), kept there while
 // that is still clear: LiDAR clusters come and go from scan to scan, and a hold point moved afresh each time
 // wandered (the shoreline scenario's hold jumped by metres every second).
+// How far the hull reaches from the reference point a hold point is for [m]: the hull, not the point, keeps the
+// clearance (an 8 m USV holding bow-on to a surfaced AUV 4 m off it put its bow on a buoy beside the AUV).
+struct HullReach {
+  double ahead = 0.0, astern = 0.0, abeam = 0.0;
+};
+
 struct SafeHold {
   Eigen::Vector2d point = Eigen::Vector2d::Zero();
   bool moved = false;
   std::vector<std::uint32_t> refused_by;
 };
 SafeHold safeHoldPoint(const Eigen::Vector2d& point, double heading, const std::vector<SbbObstacle>& obstacles,
-                       const SbbParams& p, const std::optional<Eigen::Vector2d>& previous = std::nullopt);
+                       const SbbParams& p, const std::optional<Eigen::Vector2d>& previous = std::nullopt,
+                       const HullReach& hull = HullReach());
 
 }  // namespace guidance
 }  // namespace offshore_gnc

@@ -191,7 +191,7 @@ class UsvMission {
   void onPeerAlive(double t);              // any sign of life from the AUV side (link status, relayed topic)
   // The AUV mission's status across the relay: its phase, navigation position, whether it is stationary.
   void onAuvStatus(AuvPhase phase, const Eigen::Vector3d& auv_ned, bool stationary, double t);
-  // How far the hull reaches ahead of the reference point (sim::HullFootprint's bow): the recovery distance is the
+  // How far the hull reaches ahead of the reference point (models::HullFootprint's bow): the recovery distance is the
   // bow's, so the reference point holds this much farther off.
   void setBowReach(double metres) { bow_reach_ = std::max(0.0, metres); }
   void tick(double t);                     // time-based checks (peer timeout, manual released)

@@ -7,23 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/models/hull.h"
 #include "offshore_gnc/sim/world.h"
 
 namespace offshore_gnc {
 namespace sim {
 
-// The hull's waterline outline, body frame (x forward, y starboard) about the vehicle's reference point [m].
-struct HullFootprint {
-  // The 8 m aColor USV (Table 3.3 gives the length only): the reference point is the model's pivot, the jets
-  // 2.4 m aft of it at the transom (+0.3 m), the bow 5.3 m ahead, a 2.6 m beam assumed, tapering over the bow's
-  // last 1.5 m. vehicle/outline in config/usv.yaml, x0, y0, x1, y1, ...
-  std::vector<double> outline{5.3, 0.0, 3.8, 1.3, -2.7, 1.3, -2.7, -1.3, 3.8, -1.3};
-  static const ParamTable<HullFootprint>& table();
-  void validate() const;  // at least 3 corners, finite (ConfigError)
-  // The outline placed at (north, east) with heading yaw, NED.
-  Polygon placed(const Eigen::Vector2d& ne, double yaw) const;
-};
+// The hull's footprint is the vehicle's (models::HullFootprint: guidance keeps it clear too).
+using models::HullFootprint;
 
 // Signed clearance [m] between the placed hull and the nearest obstacle of `world` (and `extra` vessels, e.g. a
 // fault's): > 0 the gap, <= 0 contact (0 when the shapes touch or overlap; a buoy's centre inside the hull gives
