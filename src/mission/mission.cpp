@@ -603,12 +603,14 @@ void UsvMission::planRecovery(double t) {
   }
   std::vector<Eigen::Vector2d> corners{u};
   if (segmentDistance(u, run_in_, auv) < off) {
-    // the way to the run-in passes the AUV closer than the recovery point: round it on the USV's side, abeam of it
-    // as far off as the recovery point (guidance's 16 m circle cuts that corner: the USV joins the line from there
-    // to the run-in, which passes the AUV at 0.9 of that)
+    // the way to the run-in passes the AUV closer than the recovery point: round it on the USV's side, as far off
+    // as the recovery point, along a leg beside it parallel to the recovery axis (from abeam upstream of it, when the
+    // USV comes from there, to abeam downstream). Guidance's 16 m circle cuts corners: with one corner abeam, the
+    // USV joined the diagonal from there to the run-in and, set by a 0.5 m/s current, passed 0.7 m from the AUV.
     const Eigen::Vector2d across(-up.y(), up.x());
     const double side = (u - auv).dot(across) >= 0.0 ? 1.0 : -1.0;
-    corners.push_back(auv + side * off * across);
+    if ((u - auv).dot(up) > 0.0) corners.push_back(auv + side * off * across + off * up);
+    corners.push_back(auv + side * off * across - off * up);
   }
   corners.push_back(run_in_);
   std::vector<Eigen::Vector2d> path{u};

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "offshore_gnc/closed_loop/mission.h"
 #include "offshore_gnc/common/faults.h"
@@ -15,6 +16,13 @@ using namespace offshore_gnc::closed_loop;
 
 namespace {
 MissionConfig defaultMission() { return loadMission("config", "config/scenarios/pyhajarvi.yaml"); }
+
+// When the AUV finds the target in the default mission without a fault (run once): the faults below come at their
+// offsets from it, so that they fall into the hold whatever the sea and the search take to get there.
+double foundAt() {
+  static const double t = runMission(defaultMission()).found_at_s;
+  return t;
+}
 
 // When the record's phase first became `phase` (NaN if never).
 double phaseAt(const VehicleRecord& r, const std::string& phase) {
@@ -58,18 +66,20 @@ TEST(RosFreeRecovery, InAPointThreeMetrePerSecondCurrentTheAuvKeepsTheSpotAndIsR
 }
 
 TEST(RosFreeRecovery, ARadioLostWhileTheAuvHoldsEndsWithBothHoldingAndTheAuvAtTheSurface) {
-  // The link goes down at 270 s (the AUV found the target at 248-268 s on seeds 1-5) and stays down. The USV keeps
+  // The link goes down 2 s after the find (while the AUV holds there) and stays down. The USV keeps
   // today's behaviour: it has the target (reliable, it crossed before) and holds there, ARRIVED; the AUV, without
   // the USV's status for usv_timeout (30 s), comes up clear of where the USV was bound and holds at the surface. Nobody
   // recovers it: auv_adrift, the AUV's state a safe one.
+  const double down = std::round(foundAt()) + 2.0;
+  ASSERT_TRUE(std::isfinite(down)) << "the default mission found no target";
   MissionConfig cfg = defaultMission();
-  cfg.link_faults = FaultPlan::parse("link@270");
-  cfg.scenario.mission.max_sim_time = 450.0;
+  cfg.link_faults = FaultPlan::parse("link@" + std::to_string(down));
+  cfg.scenario.mission.max_sim_time = down + 180.0;
   const MissionResult r = runMission(cfg);
   EXPECT_EQ(r.outcome, Outcome::kAuvAdrift) << r.reason;
   EXPECT_EQ(r.auv.final_phase, "SURFACED");
   EXPECT_EQ(r.usv.final_phase, "ARRIVED");
-  EXPECT_NEAR(r.ascent_at_s, 270.0 + 30.0, 1.0);  // the last status came up to half a second before the outage
+  EXPECT_NEAR(r.ascent_at_s, down + 30.0, 1.0);  // the last status came up to half a second before the outage
   EXPECT_GE(r.usv_auv_min_clearance_m, 1.0);
   EXPECT_LT(r.auv_surface_excursion_m, 1.5);  // it holds its point at the surface (on its GPS)
   const auto [far, deep] = wander(r, r.auv_surface_point, r.surfaced_at_s, r.sim_time_s);
@@ -80,27 +90,31 @@ TEST(RosFreeRecovery, ARadioLostWhileTheAuvHoldsEndsWithBothHoldingAndTheAuvAtTh
 TEST(RosFreeRecovery, ARadioOutageDuringTheHoldDelaysTheRecovery) {
   // The same outage, over after 90 s: the AUV has surfaced meanwhile; with the link back the USV sees it there and
   // recovers it.
+  const double down = std::round(foundAt()) + 2.0;
+  ASSERT_TRUE(std::isfinite(down)) << "the default mission found no target";
   MissionConfig cfg = defaultMission();
-  cfg.link_faults = FaultPlan::parse("link@270+90");
+  cfg.link_faults = FaultPlan::parse("link@" + std::to_string(down) + "+90");
   const MissionResult r = runMission(cfg);
   EXPECT_EQ(r.outcome, Outcome::kSuccess) << r.reason;
-  EXPECT_LT(r.ascent_at_s, 360.0);  // during the outage
-  EXPECT_GT(r.recovered_at_s, 360.0);
+  EXPECT_LT(r.ascent_at_s, down + 90.0);  // during the outage
+  EXPECT_GT(r.recovered_at_s, down + 90.0);
   EXPECT_GE(r.usv_auv_min_clearance_m, 1.0);
 }
 
 TEST(RosFreeRecovery, AKilledUsvStackLeavesTheAuvHoldingAtTheSurface) {
-  // ./scripts/mission --kill usv@280: the USV's stack (and its relay) dies while the AUV holds at the find. The AUV
+  // ./scripts/mission --kill usv@T: the USV's stack (and its relay) dies while the AUV holds at the find. The AUV
   // hears nothing more from it and, usv_timeout (30 s) after the last status, comes up and holds at the surface.
+  const double kill = std::round(foundAt()) + 12.0;
+  ASSERT_TRUE(std::isfinite(kill)) << "the default mission found no target";
   MissionConfig cfg = defaultMission();
   cfg.kill = "usv";
-  cfg.kill_at = 280.0;
+  cfg.kill_at = kill;
   cfg.after_kill = 120.0;
   const MissionResult r = runMission(cfg);
   EXPECT_EQ(r.outcome, Outcome::kStackDied) << r.reason;
   EXPECT_EQ(r.stack_died, "usv");
   EXPECT_EQ(r.auv.final_phase, "SURFACED");
-  EXPECT_NEAR(r.ascent_at_s, 280.0 + 30.0, 1.0);
+  EXPECT_NEAR(r.ascent_at_s, kill + 30.0, 1.0);
   EXPECT_LT(r.auv_surface_excursion_m, 1.5);
   const auto [far, deep] = wander(r, r.auv_surface_point, r.surfaced_at_s, r.sim_time_s);
   EXPECT_LT(far, 1.5);

@@ -513,14 +513,20 @@ TEST(UsvMission, RoundsTheAuvWhenTheWayToTheRunInPassesClose) {
   m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
   auto p = m.takePath();
   ASSERT_TRUE(p);
-  // abeam of the AUV 9.3 m off (bow reach + recovery distance) on the USV's side, then the run-in
-  bool abeam = false;
-  for (const auto& w : *p) abeam |= (w - Eigen::Vector2d(50 - 9.3, 0)).norm() < 1e-9 || (w - Eigen::Vector2d(50 + 9.3, 0)).norm() < 1e-9;
-  EXPECT_TRUE(abeam);
-  for (std::size_t i = 1; i < p->size(); ++i) {  // no leg passes closer than 0.7 of that (the first, from upstream)
+  // a leg beside the AUV 9.3 m off (bow reach + recovery distance) on the USV's side, parallel to the recovery axis,
+  // from abeam upstream to abeam downstream of it, then the run-in
+  bool upstream = false, downstream = false;
+  for (const auto& w : *p) {
+    const bool off = std::abs(std::abs(w.x() - 50.0) - 9.3) < 1e-9;
+    upstream |= off && std::abs(w.y() + 9.3) < 1e-9;
+    downstream |= off && std::abs(w.y() - 9.3) < 1e-9;
+  }
+  EXPECT_TRUE(upstream);
+  EXPECT_TRUE(downstream);
+  for (std::size_t i = 1; i < p->size(); ++i) {  // no leg passes closer than 0.9 of that
     const Eigen::Vector2d a = (*p)[i - 1], b = (*p)[i], c(50, 0);
     const double k = std::clamp((c - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    EXPECT_GT((a + k * (b - a) - c).norm(), 0.7 * 9.3) << i;
+    EXPECT_GT((a + k * (b - a) - c).norm(), 0.9 * 9.3) << i;
   }
 }
 

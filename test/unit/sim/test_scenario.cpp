@@ -46,7 +46,7 @@ TEST(Scenario, ShippedScenariosLoad) {
   EXPECT_GT(a.sea.wave_height, 0.0);
   EXPECT_NEAR(a.world.bottom_depth, 7.0, 1e-12);
   EXPECT_NEAR(a.world.buoys[0].draft, 0.5, 1e-12);
-  EXPECT_NEAR(loadScenario("config/scenarios/no_target.yaml").sea.wave_height, 1.0, 0.05);  // Beaufort 4
+  EXPECT_NEAR(loadScenario("config/scenarios/no_target.yaml").sea.wave_height, a.sea.wave_height, 1e-12);  // the same
 
   const Scenario m = loadScenario("config/scenarios/pyhajarvi_map.yaml");
   EXPECT_EQ(m.map.width, 200);
