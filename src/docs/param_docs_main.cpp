@@ -93,7 +93,8 @@ int main() {
         mission::CoverageArea::table(), {{"default", mission::CoverageArea()}}, "coverage/");
   table("GPS-compass navigation", "`config/usv.yaml` -> the GpsNavigation nodelet.",
         navigation::GpsNavigatorConfig::table(), {{"default", navigation::GpsNavigatorConfig()}});
-  table("USV hull", "`config/usv.yaml`: the outline a mission's outcome judges contact with (sim/contact.h).",
+  table("USV hull", "`config/usv.yaml`: the outline a mission's outcome judges contact with (sim/contact.h), guidance "
+        "keeps clear of obstacles when it holds, and the recovery's bow distance is measured from (models/hull.h).",
         sim::HullFootprint::table(), {{"default", sim::HullFootprint()}});
   table("AUV navigation inputs", "`config/navigation/auv_<model>.yaml` -> the AuvNavigation nodelet around its filter.",
         navigation::AuvNavigationParams::table(), {{"default", navigation::AuvNavigationParams()}});
