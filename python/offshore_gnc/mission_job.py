@@ -110,7 +110,9 @@ def parse_args(argv=None):
     ap.add_argument("--screenshot", action="store_true",
                     help="rviz (USV configuration) under Xvfb during the mission: rviz_usv.png in the report")
     ap.add_argument("--kill", metavar="VEHICLE@SIM_S", default=None,
-                    help="fault injection: SIGKILL one vehicle's whole stack at this simulated time, e.g. auv@120")
+                    help="fault injection: SIGKILL one vehicle's whole stack at this simulated time, e.g. auv@120, "
+                         "or this long after the AUV reports its find, e.g. usv@found+12 (the find's time depends on "
+                         "the sea and the search)")
     ap.add_argument("--fault", action="append", default=[], metavar="NAME@START_S[+DURATION_S]",
                     help="fault injection (repeatable), e.g. usbl@150+60 (no USBL reply for 60 s from sim 150 s); "
                          "NAME is a kind of docs/safety.md's table (offshore_gnc::faultKinds(); an unknown one is "
@@ -125,10 +127,10 @@ def parse_args(argv=None):
         ap.error("--usv-params: no file %s" % a.usv_params)
     if a.kill:
         v, _, t = a.kill.partition("@")
-        try:
-            a.kill = (v, float(t))
+        try:  # (vehicle, simulated time or None, seconds after the find or None)
+            a.kill = (v, None, float(t[len("found+"):])) if t.startswith("found+") else (v, float(t), None)
         except ValueError:
-            ap.error("--kill wants VEHICLE@SIM_S, e.g. auv@120")
+            ap.error("--kill wants VEHICLE@SIM_S or VEHICLE@found+S, e.g. auv@120, usv@found+12")
         if v not in ("usv", "auv"):
             ap.error("--kill: the vehicle is usv or auv")
     return a
@@ -428,6 +430,7 @@ def run(a):
                 flush=True)
         last_print = 0.0
         died = {}  # vehicle -> simulated time when its stack was found dead
+        found_t = None  # when the AUV's status first said TARGET_FOUND (--kill V@found+S)
         while True:
             select.select([m.proc.stdout for m in mons.values()], [], [], 0.05)
             u, av = mons["usv"].poll(), mons["auv"].poll()
@@ -452,7 +455,11 @@ def run(a):
                     f["injected_s"], f["target_ned"] = round(sim_t, 2), list(PHANTOM_TARGET_NED)
                     print("[mission] fault injection: a target %.0f m north of the origin published on the AUV's "
                           "/target at sim %.1f s" % (PHANTOM_TARGET_NED[0], sim_t), flush=True)
-            if a.kill and a.kill[0] not in died and sim_t >= a.kill[1]:
+            if found_t is None and av.get("phase") == "TARGET_FOUND":
+                found_t = sim_t
+            kill_at = a.kill and (a.kill[1] if a.kill[1] is not None else
+                                  (found_t + a.kill[2] if found_t is not None else None))
+            if kill_at is not None and a.kill[0] not in died and sim_t >= kill_at:
                 print("[mission] fault injection: killing the %s stack at sim %.1f s" % (a.kill[0], sim_t), flush=True)
                 kill_tree(launches[a.kill[0]].pid)
                 launches[a.kill[0]].wait()

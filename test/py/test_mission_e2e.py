@@ -17,7 +17,9 @@ MIN_PIXELS = 30  # of each colour in rviz's 3-D view (the job's Screenshots.MIN_
 # The USV's twin-jet DP and path following (issue 15's goals 1.0 / 3 / 1.0 m). Measured 2026-12-02 at --rate 20
 # and 8 on 2 cores: cross-track 0.57-0.71 m, waiting 0.99-1.65 m, holding (p95) 0.63-1.30 m (over the goal when the
 # boat, arriving, makes one 2 m loop about its point); the margins are for a loaded machine.
-MAX_USV_RMSE_M = 1.2
+# In the field day's wind, current and chop (issue 32) the ROS-free mission's seeds 1-3 and 11-22 gave 0.84-1.13 m
+# (test_stacks.cpp: the worst plus half, 1.7 m); the job's figure now has the recovery's legs round the AUV in it.
+MAX_USV_RMSE_M = 1.7
 MAX_WAIT_DRIFT_M = 3.0
 MAX_HOLD_P95_M = 2.0  # now at the target and beside the AUV, each from on station (5 runs of the job: 0.76-1.21 m)
 MAX_HOLD_DRIFT_M = 25.0  # the USV holding position after the AUV is gone (docs/mission.md)
@@ -138,11 +140,11 @@ def test_auv_stack_dies_usv_holds_position(tmp_path):
 def test_usv_stack_dies_while_the_auv_holds_and_it_surfaces_and_holds(tmp_path):
     """Kill -9 of the USV's whole stack (its relay with it) while the AUV holds at its find: the AUV hears no USV
     status any more and, ~usv_timeout (30 s) after the last one, comes up and holds at the surface: its safe state.
-    In the main job the AUV finds the target at about 270 s (measured in docs/mission.md), holding from then on."""
-    kill_at = 310.0
-    r, m = run("pyhajarvi.yaml", tmp_path / "kill_usv", "--kill", "usv@%g" % kill_at, "--after-kill", "110")
+    The kill comes 12 s after the AUV reports its find (the find's time depends on the sea and the search)."""
+    r, m = run("pyhajarvi.yaml", tmp_path / "kill_usv", "--kill", "usv@found+12", "--after-kill", "110")
     assert r.returncode == 1, r.stdout[-3000:]
     assert list(m["stacks_died"]) == ["usv"] and m["outcome"] == "stack_died", m
+    kill_at = m["stacks_died"]["usv"]  # when the job found the stack dead, right after it killed it
     assert m["found_at_s"] is not None and m["found_at_s"] < kill_at, m  # it held when the USV died
     assert m["auv_final_phase"] == "SURFACED", m
     # the last status came at most a status period (0.5 s) and the relay before the kill; the AUV's timer 0.5 s
