@@ -138,6 +138,8 @@ int main() {
         perception::WallConfig::table(), {{"default", perception::WallConfig()}});
   table("Sensor frames", "both perception files: where targets are put and how long a frame waits for its pose.",
         perception::SensorFrameParams::table(), {{"default", perception::SensorFrameParams()}});
+  table("LiDAR's IMU", "`config/perception/lidar_usv.yaml` -> the LidarTargets nodelet: the clouds levelled.",
+        perception::LidarImuParams::table(), {{"default", perception::LidarImuParams()}});
   table("USBL session", "`config/usbl/usbl.yaml` -> the Usbl nodelet's transceiver session.",
         usbl::SessionParams::table(), {{"default", usbl::SessionParams()}});
   table("Micron sonar", "`config/micron/micron.yaml` -> the MicronSonar driver (docs/hardware.md).",

@@ -40,8 +40,10 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
       ros_util::readParams(p, perception::SensorFrameParams::table(), f);
       target_frame_ = f.target_frame;
       tf_timeout_ = f.tf_timeout;
-      imu_topic_ = p.text("imu_topic", "lidar/imu");  // empty: clouds taken as level
-      imu_timeout_ = p.number("imu_timeout", 0.2, 0.0, 10.0);
+      perception::LidarImuParams imu;
+      ros_util::readParams(p, perception::LidarImuParams::table(), imu);
+      imu_topic_ = imu.imu_topic;
+      imu_timeout_ = imu.imu_timeout;
       extractor_ = std::make_unique<perception::LidarTargetExtractor>(cfg);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

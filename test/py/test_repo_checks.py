@@ -109,8 +109,8 @@ INLINE_READS_LEFT = {
     "src/can/can_emulator_nodelet.cpp": 2, "src/can/can_gateway_nodelet.cpp": 7, "src/cola2/cola2_bridge_nodelet.cpp": 8,
     "src/control/control_nodelet.cpp": 3, "src/geo/world_frames_nodelet.cpp": 3, "src/guidance/guidance_nodelet.cpp": 2,
     "src/navigation/auv_navigation_nodelet.cpp": 1, "src/navigation/gps_navigation_nodelet.cpp": 6,
-    "src/perception/sonar_targets_nodelet.cpp": 3, "src/safety/safety_nodelet.cpp": 3, "src/sim/auv_sim_nodelet.cpp": 19,
-    "src/sim/ros_sim.h": 5, "src/sim/usv_sim_nodelet.cpp": 18, "src/usbl/usbl_nodelet.cpp": 6,
+    "src/perception/sonar_targets_nodelet.cpp": 3, "src/safety/safety_nodelet.cpp": 3, "src/sim/auv_sim_nodelet.cpp": 15,
+    "src/sim/ros_sim.h": 5, "src/sim/usv_sim_nodelet.cpp": 10, "src/usbl/usbl_nodelet.cpp": 6,
     "src/usbl/usbl_sim_nodelet.cpp": 5,
 }
 

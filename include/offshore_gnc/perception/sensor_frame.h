@@ -21,5 +21,19 @@ struct SensorFrameParams {
   }
 };
 
+// The LiDAR's own IMU (the MRS1000's), whose roll and pitch level each cloud before its targets are placed.
+struct LidarImuParams {
+  std::string imu_topic = "lidar/imu";  // empty: clouds taken as level
+  double imu_timeout = 0.2;             // [s]
+  static const ParamTable<LidarImuParams>& table() {
+    using P = LidarImuParams;
+    static const ParamTable<P> t = ParamTable<P>()
+        .string("imu_topic", &P::imu_topic, "sensor_msgs/Imu of the LiDAR's own IMU (empty: clouds taken as level)")
+        .number("imu_timeout", &P::imu_timeout, 0.0, 10.0, "s",
+                "a cloud without an IMU sample this close to its stamp is taken as level (and counted)");
+    return t;
+  }
+};
+
 }  // namespace perception
 }  // namespace offshore_gnc

@@ -116,7 +116,13 @@ class AuvSim(unittest.TestCase):
         self.assertGreater(t.pose.pose.position.y, 5.8)  # moved north (ENU y) after the setpoints
         self.buf.lookup_transform("map", "auv/base_link", rospy.Time(0), rospy.Duration(5))
         s = self.buf.lookup_transform("auv/base_link", "auv/sonar", rospy.Time(0), rospy.Duration(5))
-        self.assertAlmostEqual(s.transform.rotation.x, 1.0, places=6)  # sonar frame is FRD
+        # the sonar frame is FRD (180 deg about x from the FLU body), its head tilted 15 deg down (sim::SonarConfig
+        # tilt): 180 deg about x composed with 15 deg about y, q = (cos 7.5 deg, 0, +-sin 7.5 deg, 0) in (x, y, z, w)
+        q = s.transform.rotation
+        self.assertAlmostEqual(abs(q.x), math.cos(math.radians(7.5)), places=6)
+        self.assertAlmostEqual(q.y, 0.0, places=6)
+        self.assertAlmostEqual(abs(q.z), math.sin(math.radians(7.5)), places=6)
+        self.assertAlmostEqual(q.w, 0.0, places=6)
 
     def test_nan_setpoints_counted(self):
         values, names = {}, set()
