@@ -458,7 +458,8 @@ void AuvStack::step() {
   if (step_ % guidance_every_ == 0 && guidance_.update(t, guidance_every_ * cfg_.sim.dt, last_)) {
     guided_ = true;
     control_.onReference(last_.reference, t);
-    if (usbl_) usbl_->commandedSurge(t, last_.reference.surge);  // /auv/guidance/status desired_surge
+    if (usbl_ && last_.reference.mode == ReferenceMode::kFollow)  // a hold demands no speed (auv_navigator.h)
+      usbl_->commandedSurge(t, last_.reference.surge);  // /auv/guidance/status desired_surge
     if (cfg_.mission_enabled) {
       mission_.onGuidance(last_.los.mode, t);
       if (auto p = mission_.takePath()) guidance_.setPath(*p);

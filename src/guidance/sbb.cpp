@@ -202,13 +202,23 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
     if (out.blocked) break;
     push(path[k], false, k + 1 == path.size());  // the goal is always kept
   }
-  // Never a waypoint inside a box (original waypoints included): drop them, keep the last as the goal only if
-  // it is free, otherwise report it.
+  // Never a waypoint inside a box (original waypoints included): drop them. The goal is where the vehicle will
+  // hold, slowly, not pass at speed: it needs only the hold clearance (safeHoldPoint), so one inside a passing box
+  // is moved just clear of the obstacle's hold box instead of dropped (dropped, a station 10 m past a moored 12 m
+  // vessel left the USV holding at the detour's last corner, 18 m from the target).
+  if (!out.blocked && out.path.size() >= 2 && out.path.back().head<2>() == path.back().head<2>()) {
+    Eigen::Vector3d& goal = out.path.back();
+    const Eigen::Vector2d d = goal.head<2>() - out.path[out.path.size() - 2].head<2>();
+    const SafeHold h = safeHoldPoint(goal.head<2>(), std::atan2(d.y(), d.x()), obs, p, std::nullopt, HullReach{});
+    if (h.moved) out.modified = true;
+    goal.head<2>() = h.point;
+    is_detour.back() = false;
+  }
   std::vector<Eigen::Vector3d> kept;
   for (std::size_t i = 0; i < out.path.size(); ++i) {
     bool inside = false;
     for (const auto& b : all_boxes) inside = inside || b.contains(out.path[i].head<2>(), 1e-6);
-    if (inside && i > 0) {
+    if (inside && i > 0 && !(i + 1 == out.path.size() && !out.blocked)) {
       out.modified = true;
       if (out.status.empty()) out.status = "waypoint inside a safety box dropped";
       continue;

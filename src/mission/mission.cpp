@@ -103,6 +103,8 @@ const ParamTable<AuvMissionParams>& AuvMissionParams::table() {
       .integer("confirm_detections", &P::confirm_detections, 1, 100, "sonar sweeps that must see the same object")
       .number("confirm_radius", &P::confirm_radius, 0.1, 50.0, "m", "detections closer than this are one object")
       .number("detection_max_age", &P::detection_max_age, 1.0, 1e5, "s", "unconfirmed detections older are forgotten")
+      .number("search_margin", &P::search_margin, 0.0, 1000.0, "m",
+              "detections farther than this outside the coverage area are not its target (moorings, hulls met on the way)")
       .number("start_delay", &P::start_delay, 0.0, 3600.0, "s", "the search starts this long after start-up")
       .number("hold_standoff", &P::hold_standoff, 0.0, 50.0, "m",
               "after the find, hold at depth this far from the target on the line from the find, facing it")
@@ -116,7 +118,9 @@ const ParamTable<AuvMissionParams>& AuvMissionParams::table() {
       .number("surface_clearance", &P::surface_clearance, 0.0, 500.0, "m",
               "surface at least this far from where the USV holds or is bound by its last status (moving at depth first)")
       .number("station_radius", &P::station_radius, 0.1, 50.0, "m",
-              "on station at its hold point, and stationary at the surface, within this");
+              "on station at its hold point within this; stationary at the surface: moved less over still_window")
+      .number("still_window", &P::still_window, 1.0, 600.0, "s",
+              "at the surface, stationary: its position, smoothed over a quarter of this, judged over this long");
   return t;
 }
 
@@ -206,6 +210,17 @@ void AuvMission::onPose(const Eigen::Vector3d& ned, double yaw, double t) {
   }
   pose_ = ned;
   yaw_ = yaw;
+  if (phase_ != AuvPhase::Surfaced && phase_ != AuvPhase::Recovered) {
+    still_.clear();
+  } else if (still_.empty() || t > still_.back().first) {
+    Eigen::Vector2d smooth = ned.head<2>();
+    if (!still_.empty()) {  // first order, time constant a quarter of the window
+      const double a = 1.0 - std::exp(-(t - still_.back().first) / (0.25 * p_.still_window));
+      smooth = still_.back().second + a * (smooth - still_.back().second);
+    }
+    still_.emplace_back(t, smooth);
+    while (still_.size() > 2 && still_[1].first <= t - p_.still_window) still_.pop_front();  // one just older stays
+  }
   if (phase_ == AuvPhase::TargetFound && std::isnan(on_station_since_) &&
       (ned.head<2>() - hold_.head<2>()).norm() <= p_.station_radius)
     on_station_since_ = t;
@@ -228,8 +243,12 @@ void AuvMission::onSafetySurface(double t) {
 }
 
 bool AuvMission::stationary() const {
-  return (phase_ == AuvPhase::Surfaced || phase_ == AuvPhase::Recovered) && pose_ &&
-         (pose_->head<2>() - hold_.head<2>()).norm() <= p_.station_radius;
+  if ((phase_ != AuvPhase::Surfaced && phase_ != AuvPhase::Recovered) || still_.empty() ||
+      still_.back().first - still_.front().first < p_.still_window)
+    return false;
+  const Eigen::Vector2d& now = still_.back().second;
+  return std::all_of(still_.begin(), still_.end(),
+                     [&](const auto& s) { return (s.second - now).norm() <= p_.station_radius; });
 }
 
 void AuvMission::start(double t) {
@@ -268,6 +287,15 @@ bool AuvMission::onDetection(const Eigen::Vector3d& p, double t) {
   }
   if (phase_ != AuvPhase::Coverage) {
     counters_.increment("detection_outside_search");
+    return false;
+  }
+  // The target is in the area searched: a mooring or a hull the sonar met on the way there is not it (a buoy's
+  // mooring 5 m from the start, seen twice as the AUV dived, was "found" 38 m from the target).
+  const CoverageArea& a = p_.coverage;
+  const double out_n = std::max({a.north_min - p.x(), p.x() - a.north_max, 0.0});
+  const double out_e = std::max({a.east_min - p.y(), p.y() - a.east_max, 0.0});
+  if (std::hypot(out_n, out_e) > p_.search_margin) {
+    counters_.increment("detection_outside_area");
     return false;
   }
   counters_.increment("detections");
@@ -350,8 +378,9 @@ std::string AuvMission::detail() const {
       else os << "depth reference " << depth_ref_ << " m, rising at " << p_.ascent_rate << " m/s";
       break;
     case AuvPhase::Surfaced:
-      os << "at the surface, holding at N " << hold_.x() << " E " << hold_.y() << (stationary() ? "" : " (off it)")
-         << "; waiting to be recovered";
+      os << "at the surface, holding at N " << hold_.x() << " E " << hold_.y();
+      if (pose_) os << " (" << (pose_->head<2>() - hold_.head<2>()).norm() << " m off it)";
+      os << (stationary() ? ", still" : ", moving") << "; waiting to be recovered";
       break;
     case AuvPhase::Recovered: os << "recovered: the USV holds beside it"; break;
   }

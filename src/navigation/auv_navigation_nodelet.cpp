@@ -183,6 +183,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     // whenever the navigation itself is (no fix yet, a gap)
     const ros::Time t = ros::Time::now();
     if (t.isZero()) return;  // the clock has not started
+    if (m->reference_mode != GuidanceStatus::REFERENCE_FOLLOW) return;  // a hold demands no speed (auv_navigator.h)
     std::lock_guard<std::mutex> l(mutex_);
     nav_->commandedSpeed(t.toSec(), m->desired_surge);  // a NaN surge is refused and counted by the core
   }

@@ -94,13 +94,14 @@ def test_acolor_mission_on_usbl_at_another_site_finds_the_target_and_ends_safe(t
     """The aColor as its own vehicle: Table 4.2's LOS with R = 3 L_AUV, its yaw and heave PIDs, the constant surge
     PWM for guidance's speed, navigation on USBL fixes and its commands (no DVL). At Hobart (southern and eastern
     hemispheres): the scenario's origin reaches every node of both vehicles, no vehicle file names a site."""
-    r, m = run("hobart.yaml", tmp_path / "acolor", "--auv-model", "acolor", "--max-sim-time", "700")
-    # Its hold on USBL fixes alone is loose (config/control/acolor_sim.yaml): at the surface it does not stay within
-    # the mission's 1 m for the settle time, so the USV keeps its run-in distance and never calls it recovered
-    # (ROS-free seeds 1-5: auv_adrift every time, the hull 3.3-5.2 m off it at the closest). Safe, and said so.
-    assert r.returncode == 1, r.stdout[-3000:]
-    assert m["outcome"] == "auv_adrift" and m["auv_final_phase"] == "SURFACED", m
-    assert m["usv_auv_min_clearance_m"] is None or m["usv_auv_min_clearance_m"] >= MIN_AUV_CLEARANCE_M, m
+    r, m = run("hobart.yaml", tmp_path / "acolor", "--auv-model", "acolor", "--max-sim-time", "900")
+    # Its hold on USBL fixes alone is loose (config/control/acolor_sim.yaml), yet still enough at the surface for the
+    # USV to close in (ROS-free seeds 1-3, 2026-12-04: recovered at 481-617 s, 1.5-7.0 m off its point at the
+    # surface, the hull 3.4-5.4 m off it at the closest; before its navigation stopped reading a hold's desired surge
+    # of 0 as "still in the water", auv_adrift every time).
+    assert r.returncode == 0, r.stdout[-3000:]
+    assert m["outcome"] == "success" and m["usv_final_phase"] == "RECOVERED", m
+    assert m["usv_auv_min_clearance_m"] is not None and m["usv_auv_min_clearance_m"] >= MIN_AUV_CLEARANCE_M, m
     assert m["site"]["latitude"] == -42.8821 and m["site"]["longitude"] == 147.3514, m["site"]
     assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
     assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < ACOLOR_MAX_NAV_RMSE_M, m

@@ -82,7 +82,10 @@ class AuvNavigator {
   bool depth(double t, double z);                               // z down [m]
   bool heading(double t, double yaw, double yaw_rate);          // NED yaw [rad], rate [rad/s]
   bool dvl(double t, const Eigen::Vector3d& v_body);            // velocity over ground, body FRD [m/s]
-  bool commandedSpeed(double t, double surge);                  // commanded surge [m/s] (no DVL)
+  // Commanded surge through the water [m/s] (no DVL), only while guidance follows a path: a dynamic-positioning
+  // hold's thrust is no speed demand (its desired surge of 0 read as "still in the water" made every fix's motion
+  // current; the aColor holding at the surface chased that current 130 m away, its fixes gated out).
+  bool commandedSpeed(double t, double surge);
   bool predict(double t);                                       // propagate the filter to t
   // The estimate at t (extrapolated from the latest state, or from the history for an earlier t); const.
   AuvNavEstimate estimate(double t) const;

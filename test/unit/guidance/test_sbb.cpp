@@ -132,6 +132,25 @@ TEST(Sbb, OverlappingBoxesMergedAndNoWaypointInsideAnyBox) {
   EXPECT_EQ(plan.path.back(), path.back());
 }
 
+TEST(Sbb, AGoalInsideAPassingBoxIsKeptClearOfTheHoldBoxNotDropped) {
+  // A station past a 12 m vessel: inside the box for passing it (6 + safety_x 5 = 11 m from its centre along the
+  // path), outside its hold box (6 + hold_clearance 3 = 9 m): the goal stays where it is; 7 m past the centre it
+  // is moved just clear of the hold box, never left out (the vehicle would hold at the detour's last corner).
+  SbbObstacle vessel = buoy(1, 25, 0);
+  vessel.length = 12.0;
+  vessel.width = 4.0;
+  for (double goal : {35.0, 32.0}) {
+    const SbbPlan plan = planSbb({V3(0, 0, 0), V3(goal, 0, 0)}, V2(0, 0), {vessel}, params());
+    EXPECT_FALSE(plan.blocked);
+    ASSERT_GE(plan.path.size(), 3u);  // a detour corner, then the goal
+    const V2 end = plan.path.back().head<2>();
+    EXPECT_FALSE(plan.detour.back());
+    if (goal == 35.0) EXPECT_LT((end - V2(35, 0)).norm(), 1e-9) << end.transpose();
+    else EXPECT_NEAR(end.x(), 25.0 + 6.0 + 3.0, 0.01) << end.transpose();  // out through the far edge
+    EXPECT_LT(std::abs(end.y()), 0.01);
+  }
+}
+
 TEST(Sbb, BlockedWhenNoSideFits) {
   SbbParams p = params();
   p.max_offset = 4.0;  // a narrow channel: the detour needs ~8 m

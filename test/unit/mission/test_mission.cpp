@@ -44,10 +44,24 @@ TEST(AuvMission, FirstConfirmedDetectionStopsTheSearch) {
 TEST(AuvMission, StaleCandidatesAreForgotten) {
   AuvMission m(auvParams(2, 2.0, 60.0));
   m.start(0.0);
-  EXPECT_FALSE(m.onDetection({5, 5, 5}, 1.0));
-  EXPECT_FALSE(m.onDetection({5, 5, 5}, 100.0));  // 99 s later: the first one has expired
+  EXPECT_FALSE(m.onDetection({25, 5, 5}, 1.0));
+  EXPECT_FALSE(m.onDetection({25, 5, 5}, 100.0));  // 99 s later: the first one has expired
   EXPECT_EQ(m.phase(), AuvPhase::Coverage);
-  EXPECT_TRUE(m.onDetection({5.5, 5, 5}, 110.0));
+  EXPECT_TRUE(m.onDetection({25.5, 5, 5}, 110.0));
+}
+
+TEST(AuvMission, OnlyTheAreaSearchedHoldsTheTarget) {
+  AuvMission m(auvParams());  // the area: N 20..60, E -10..10; search_margin 5 m
+  m.start(0.0);
+  // a mooring seen on the way there, twice: not the target
+  EXPECT_FALSE(m.onDetection({8, 2, 5}, 1.0));
+  EXPECT_FALSE(m.onDetection({8.2, 2, 5}, 5.0));
+  EXPECT_EQ(m.phase(), AuvPhase::Coverage);
+  EXPECT_EQ(m.counters().get("detection_outside_area"), 2u);
+  // just beyond the edge (seen from the outer lane), within the margin: it counts
+  EXPECT_FALSE(m.onDetection({30, 13, 5}, 10.0));
+  EXPECT_TRUE(m.onDetection({30, 13.5, 5}, 15.0));
+  EXPECT_EQ(m.counters().get("detections"), 2u);
 }
 
 TEST(AuvMission, NoTargetAndBadInput) {
@@ -363,8 +377,15 @@ TEST(AuvMission, ComesUpWhenTheUsvArrivesClearOfItAtTheBoundedRate) {
   for (std::size_t i = 1; i < depths.size(); ++i) EXPECT_LE(depths[i - 1] - depths[i], 0.1 * 0.5 + 1e-9);  // ascent_rate
   EXPECT_DOUBLE_EQ(depths.back(), 0.0);
   EXPECT_EQ(m.phase(), AuvPhase::Surfaced);
+  // still: judged over still_window (10 s) of reports at the surface; waves' orbital motion (+-0.8 m, 5 s) and a
+  // steady 1.5 m off its point (a proportional hold against the wind) are still; a drift of 0.2 m/s is not
+  const Eigen::Vector3d at = m.holdPoint() + Eigen::Vector3d(1.5, 0, 0);
+  for (double t = 150.5; t < 155.0; t += 0.5) m.onPose(at, 0.0, t);
+  EXPECT_FALSE(m.stationary());  // not yet seen long enough
+  for (double t = 155.0; t <= 175.0; t += 0.5) m.onPose(at + Eigen::Vector3d(0.8 * std::sin(1.26 * t), 0, 0), 0.0, t);
   EXPECT_TRUE(m.stationary());
-  m.onPose({29.5, 3, 0}, 0.0, 151.0);  // 1.5 m off its point: not stationary
+  EXPECT_NE(m.detail().find(" m off it), still;"), std::string::npos) << m.detail();
+  for (double t = 175.5; t <= 185.0; t += 0.5) m.onPose(at + Eigen::Vector3d(0.2 * (t - 175.0), 0, 0), 0.0, t);
   EXPECT_FALSE(m.stationary());
   m.onUsvStatus(UsvPhase::Recovered, {31, 3}, {31, 3}, 160.0);
   EXPECT_EQ(m.phase(), AuvPhase::Recovered);
