@@ -271,8 +271,16 @@ Eigen::Vector2d Environment::driftForce(double heading, const Hull& hull) const 
   const Eigen::Vector2d d(-std::cos(p_.wave_direction), -std::sin(p_.wave_direction));
   const double facing = hull.length * std::abs(std::sin(std::atan2(d.y(), d.x()) - heading)) +
                         hull.beam * std::abs(std::cos(std::atan2(d.y(), d.x()) - heading));
+  // A body small against the wavelength scatters little: Havelock's mean drift on a vertical cylinder of radius r,
+  // (5/16) pi^2 rho g a^2 r (k r)^3 for small k r, is 3.08 (k r)^3 times the full reflection's rho g a^2 r over
+  // its width 2r (Faltinsen, Sea Loads, 1990, ch. 5); capped at full reflection (k r >= 0.69). Without it a 1.5 m
+  // Girona500 felt 420 N in a Beaufort 4 sea, 43 kgf, and no surfaced AUV could hold.
+  const double r = 0.5 * facing;
   double e = 0.0;  // sum of a_i^2 / 2 R_i^2
-  for (const auto& c : waves_) e += 0.5 * c.a * c.a * (1.0 - std::exp(-2.0 * c.k * hull.draft));
+  for (const auto& c : waves_) {
+    const double kr = c.k * r, small = std::min(1.0, 3.08 * kr * kr * kr);
+    e += 0.5 * c.a * c.a * (1.0 - std::exp(-2.0 * c.k * hull.draft)) * small;
+  }
   return p_.water_density * kG * e * facing * d;
 }
 

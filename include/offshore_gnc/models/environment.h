@@ -97,7 +97,8 @@ class Environment {
   WaveMotion wave(double t, const VehicleState& lf, const Hull& hull) const;
   // Mean wave drift force, NED [N], on a surface-piercing hull: rho g sum(a_i^2 / 2) R_i^2 times its width facing
   // the waves, along their direction; R_i^2 = 1 - exp(-2 k_i draft), the energy flux the hull's draft stops
-  // (long waves pass under it). 0 for a calm sea.
+  // (long waves pass under it), times min(1, 3.08 (k_i w/2)^3) for a width w small against the wavelength (they
+  // pass round it: Havelock's small-body limit). 0 for a calm sea.
   Eigen::Vector2d driftForce(double heading, const Hull& hull) const;
   // Whitecap foam at a point of the surface: cells of `patch` metres that whiten for `life` seconds at a time,
   // a `fraction` of them at any time (deterministic for the seed); whitecapFraction(windSpeed(t)) is the wind's.

@@ -230,10 +230,10 @@ TEST(RosFreeMission, NoTargetScenarioEndsWithTheAuvRecovered) {
 
 // Issue 32: the same in the moderate sea (Beaufort 4, Hs 1 m) with everything that echoes: the surface, a bottom 7 m
 // down, the buoy's mooring line in the coverage area, volume clutter. None of it may become a target (one seed here;
-// `./scripts/bench clutter` runs 20). At the surface the waves' mean drift is more than the Girona500's full backing
-// thrust: it drifts off its point and the USV, keeping clear of it, cannot call it recovered (2026-12-04 seed 1:
-// 244 m off its point at the run's end).
-TEST(RosFreeMission, NoTargetInTheModerateSeaFindsNoneAndTheAuvDrifts) {
+// `./scripts/bench clutter` runs 20). At the surface the Girona500 holds and is recovered: the waves' mean drift
+// on its 1.5 m hull is a small body's (Havelock), not a wall's (2026-12-04 seed 1: 2.6 m off its point at most;
+// as a full reflection it had exceeded its 420 N of backing thrust, and it ended 244 m off: auv_adrift).
+TEST(RosFreeMission, NoTargetInTheModerateSeaFindsNoneAndTheAuvIsRecovered) {
   std::ifstream in("config/scenarios/no_target.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const auto at = text.find("sea_state: field_day");
@@ -247,7 +247,8 @@ TEST(RosFreeMission, NoTargetInTheModerateSeaFindsNoneAndTheAuvDrifts) {
   const MissionResult r = runMission(cfg);
   EXPECT_FALSE(r.target.has_value());
   EXPECT_LT(r.ascent_at_s - r.found_at_s, 1.0);
-  EXPECT_EQ(r.outcome, Outcome::kAuvAdrift) << r.reason;
-  EXPECT_GT(r.auv_surface_excursion_m, 20.0);
+  EXPECT_TRUE(r.success) << r.reason;
+  EXPECT_EQ(r.usv.final_phase, "RECOVERED");
+  EXPECT_LT(r.auv_surface_excursion_m, 5.0);
   EXPECT_GE(r.usv_auv_min_clearance_m, 1.0);  // never on top of it
 }

@@ -422,7 +422,10 @@ TEST(Environment, DriftForceAlongTheWavesLargestBeamOn) {
   const Eigen::Vector2d head = env.driftForce(0.0, usv), beam = env.driftForce(M_PI / 2, usv);
   EXPECT_LT(head.x(), 0.0);
   EXPECT_NEAR(head.y(), 0.0, 1e-9);
-  EXPECT_NEAR(beam.x() / head.x(), 8.0 / 2.5, 1e-9);
+  // beam on: more width facing the waves, and a width less small against their length (Havelock)
+  EXPECT_GT(beam.x() / head.x(), 8.0 / 2.5);
+  // a 0.5 m body, small against the 39 m waves, lets them pass round it: per metre of width, a few % of the beam-on hull
+  EXPECT_LT(env.driftForce(0.0, Hull{0.5, 0.5, 0.5}).norm() / 0.5, 0.05 * beam.norm() / 8.0);
   // quadratic in the height; long waves pass under a shallow draft
   p.wave_height = 2.0;
   EXPECT_NEAR(Environment(p).driftForce(0.0, usv).x() / head.x(), 4.0, 1e-9);
