@@ -275,7 +275,6 @@ void UsvStack::step() {
   if (cfg_.mission_enabled) {
     if (step_ % mission_every_ == 0) mission_.tick(t);
     pathToGuidance();
-    guidance_.setKeepOut(mission_.keepOut());  // /usv/mission/keep_out
   }
   if (step_ % guidance_every_ == 0 && guidance_.update(t, guidance_every_ * cfg_.sim.dt, last_)) {
     guided_ = true;

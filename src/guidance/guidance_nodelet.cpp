@@ -53,10 +53,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     markers_.advertise(nh, "markers", "sbb", true);
     path_sub_ = nh.subscribe("guidance/path", 1, &GuidanceNodelet::onPath, this);
     odom_sub_ = nh.subscribe("odom", 10, &GuidanceNodelet::onOdom, this);
-    if (gp.sbb_enabled) {
-      obstacles_sub_ = nh.subscribe("obstacles", 1, &GuidanceNodelet::onObstacles, this);
-      keep_out_sub_ = nh.subscribe("mission/keep_out", 1, &GuidanceNodelet::onKeepOut, this);  // the mission's
-    }
+    if (gp.sbb_enabled) obstacles_sub_ = nh.subscribe("obstacles", 1, &GuidanceNodelet::onObstacles, this);
 
     reconfigure_ = std::make_unique<dynamic_reconfigure::Server<GuidanceConfig>>(reconf_mutex_, pnh);
     reconfigure_->updateConfig(ros_util::toReconfigure<GuidanceConfig>(guidance::GuidanceParams::table(), gp));
@@ -105,9 +102,9 @@ class GuidanceNodelet : public nodelet::Nodelet {
     pipeline_->setState(ros_util::stateFromOdom(*m), ros::Time::now().toSec());
   }
 
-  static std::vector<guidance::SbbObstacle> obstaclesOf(const TargetArray& m) {
+  void onObstacles(const TargetArray::ConstPtr& m) {
     std::vector<guidance::SbbObstacle> obstacles;
-    for (const auto& t : m.targets) {
+    for (const auto& t : m->targets) {
       guidance::SbbObstacle o;
       o.id = t.id;
       o.origin = Eigen::Vector2d(t.origin.x, t.origin.y);
@@ -115,19 +112,8 @@ class GuidanceNodelet : public nodelet::Nodelet {
       o.width = t.width;
       obstacles.push_back(o);
     }
-    return obstacles;
-  }
-
-  void onObstacles(const TargetArray::ConstPtr& m) {
-    const auto obstacles = obstaclesOf(*m);
     std::lock_guard<std::mutex> l(mutex_);
     pipeline_->setObstacles(obstacles, ros::Time::now().toSec());
-  }
-
-  void onKeepOut(const TargetArray::ConstPtr& m) {
-    const auto keep_out = obstaclesOf(*m);
-    std::lock_guard<std::mutex> l(mutex_);
-    pipeline_->setKeepOut(keep_out);
   }
 
   void onTimer(const ros::TimerEvent& ev) {
@@ -211,7 +197,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::Publisher status_pub_, boxes_pub_, planned_pub_;
   ros_util::NamespaceMarkers markers_;
-  ros::Subscriber path_sub_, odom_sub_, obstacles_sub_, keep_out_sub_;
+  ros::Subscriber path_sub_, odom_sub_, obstacles_sub_;
   ros::Timer timer_;
 };
 

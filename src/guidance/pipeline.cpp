@@ -122,27 +122,6 @@ void GuidancePipeline::setObstacles(const std::vector<SbbObstacle>& obstacles, d
   replan_ = true;
 }
 
-void GuidancePipeline::setKeepOut(const std::vector<SbbObstacle>& keep_out) {
-  bool changed = keep_out.size() != keep_out_.size();
-  for (std::size_t i = 0; !changed && i < keep_out.size(); ++i)
-    changed = (keep_out[i].origin - keep_out_[i].origin).norm() > p_.replan_distance;
-  if (!changed) return;
-  keep_out_.clear();
-  for (const auto& o : keep_out) {
-    if (o.origin.allFinite() && std::isfinite(o.length) && std::isfinite(o.width)) keep_out_.push_back(o);
-    else counters_.increment("bad_obstacles");
-  }
-  replan_ = true;
-}
-
-std::vector<SbbObstacle> GuidancePipeline::planningObstacles(double t) const {
-  std::vector<SbbObstacle> all;
-  if (!p_.sbb_enabled) return all;
-  if (t - obstacles_time_ <= p_.obstacle_timeout) all = obstacles_;
-  all.insert(all.end(), keep_out_.begin(), keep_out_.end());
-  return all;
-}
-
 void GuidancePipeline::setState(const VehicleState& s, double t) {
   state_ = s;
   state_time_ = t;
@@ -151,17 +130,16 @@ void GuidancePipeline::setState(const VehicleState& s, double t) {
 
 void GuidancePipeline::replan(const VehicleState& s, double t) {
   if (!p_.sbb_enabled || t - obstacles_time_ > p_.obstacle_timeout) obstacles_.clear();
-  const std::vector<SbbObstacle> obstacles = planningObstacles(t);
   SbbPlan plan;
   double length = 0.0;
   for (std::size_t i = 1; i < base_path_.size(); ++i) length += (base_path_[i] - base_path_[i - 1]).head<2>().norm();
   // A path shorter than the corridor is a hold (the mission's lead-in to its station): no detour is planned round
   // it (the shoreline's boxes turned the hold into a detour and back every scan); the hold point keeps clear.
-  if (obstacles.empty() || base_path_.size() < 2 || length < p_.sbb.corridor) {
+  if (obstacles_.empty() || base_path_.size() < 2 || length < p_.sbb.corridor) {
     plan.path = base_path_;
     plan.status = "path clear";
   } else {
-    plan = planSbb(base_path_, s.position.head<2>(), obstacles, p_.sbb, plan_.boxes);
+    plan = planSbb(base_path_, s.position.head<2>(), obstacles_, p_.sbb, plan_.boxes);
     if (plan.blocked) counters_.increment("blocked_plans");
   }
   // Re-set the LOS path only when it really changed (slowly moving obstacles), resuming on the nearest leg.
@@ -203,11 +181,10 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
 }
 
 void GuidancePipeline::keepHoldClear(double t, GuidanceOutput& out) {
-  const std::vector<SbbObstacle> obstacles = planningObstacles(t);
-  if (obstacles.empty()) return;
+  if (!p_.sbb_enabled || t - obstacles_time_ > p_.obstacle_timeout) return;
   const Eigen::Vector2d asked = out.reference.point.head<2>();
   if (!(refused_hold_ - asked).isZero(0.1)) moved_hold_.reset();  // another hold point: choose afresh
-  const SafeHold h = safeHoldPoint(asked, out.reference.heading, obstacles, p_.sbb, moved_hold_, hull_);
+  const SafeHold h = safeHoldPoint(asked, out.reference.heading, obstacles_, p_.sbb, moved_hold_, hull_);
   if (!h.moved) return;
   if (!moved_hold_) counters_.increment("hold_point_in_box");
   refused_hold_ = asked;

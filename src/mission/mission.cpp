@@ -406,9 +406,7 @@ const ParamTable<UsvMissionParams>& UsvMissionParams::table() {
               "recovering, the bow holds this far from the surfaced AUV, downstream of it")
       .number("recovery_replan", &P::recovery_replan, 0.1, 100.0, "m",
               "the recovery is planned again when the AUV's reported position moved this far")
-      .number("settle_time", &P::settle_time, 0.0, 3600.0, "s", "both vehicles stationary this long: RECOVERED")
-      .number("auv_length", &P::auv_length, 0.1, 20.0, "m",
-              "recovering, the surfaced AUV is an obstacle this long (square) for guidance's safety boxes");
+      .number("settle_time", &P::settle_time, 0.0, 3600.0, "s", "both vehicles stationary this long: RECOVERED");
   return t;
 }
 
@@ -605,15 +603,6 @@ void UsvMission::recover(double t) {
     phase_ = UsvPhase::Recovered;
     recovered_t_ = t;
   }
-}
-
-std::vector<guidance::SbbObstacle> UsvMission::keepOut() const {
-  if ((phase_ != UsvPhase::Recovery && phase_ != UsvPhase::Recovered) || !auv_pos_.allFinite()) return {};
-  guidance::SbbObstacle o;
-  o.id = kAuvObstacleId;
-  o.origin = auv_pos_;
-  o.length = o.width = p_.auv_length;
-  return {o};
 }
 
 bool UsvMission::auvHeld(double t) const {

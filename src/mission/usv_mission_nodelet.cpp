@@ -10,7 +10,6 @@
 #include <offshore_gnc/JoystickCommand.h>
 #include <offshore_gnc/LinkStatus.h>
 #include <offshore_gnc/Target.h>
-#include <offshore_gnc/TargetArray.h>
 #include <pluginlib/class_list_macros.hpp>
 
 #include <memory>
@@ -51,7 +50,6 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     path_pub_ = nh.advertise<nav_msgs::Path>("guidance/path", 1, true);
     status_pub_ = nh.advertise<MissionStatus>("mission/status", 10, true);
     markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("mission/markers", 1, true);
-    keep_out_pub_ = nh.advertise<TargetArray>("mission/keep_out", 1, true);  // guidance plans round these
     target_sub_ = nh.subscribe("/target", 10, &UsvMissionNodelet::onTarget, this);
     odom_sub_ = nh.subscribe("odom", 10, &UsvMissionNodelet::onOdom, this);
     guidance_sub_ = nh.subscribe("guidance/status", 10, &UsvMissionNodelet::onGuidance, this);
@@ -133,7 +131,6 @@ class UsvMissionNodelet : public nodelet::Nodelet {
 
   void afterChange(mission::UsvPhase before) {
     publishPath();
-    publishKeepOut();
     if (mission_->phase() != before) {
       NODELET_INFO("%s: %s", mission::toString(mission_->phase()), mission_->detail().c_str());
       publishStatus();
@@ -150,26 +147,6 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     updater_->update();
   }
 
-  void publishKeepOut() {
-    TargetArray a;
-    a.header.stamp = ros::Time::now();
-    a.header.frame_id = "map_ned";
-    for (const auto& o : mission_->keepOut()) {
-      Target t;
-      t.header = a.header;
-      t.id = o.id;
-      t.source = Target::SOURCE_MISSION;
-      t.origin.x = t.centroid.x = t.nearest.x = o.origin.x();
-      t.origin.y = t.centroid.y = t.nearest.y = o.origin.y();
-      t.length = o.length;
-      t.width = o.width;
-      a.targets.push_back(t);
-    }
-    if (a.targets.size() == published_keep_out_ && a.targets.empty()) return;  // nothing, as before
-    published_keep_out_ = a.targets.size();
-    keep_out_pub_.publish(a);
-  }
-
   void publishStatus() {
     const auto ph = mission_->phase();
     const auto& pose = mission_->pose();
@@ -183,8 +160,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
   }
 
   std::unique_ptr<mission::UsvMission> mission_;
-  ros::Publisher path_pub_, status_pub_, markers_pub_, keep_out_pub_;
-  std::size_t published_keep_out_ = 0;
+  ros::Publisher path_pub_, status_pub_, markers_pub_;
   ros::Subscriber target_sub_, odom_sub_, guidance_sub_, manual_sub_, link_sub_, auv_sub_;
   ros::Timer timer_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;

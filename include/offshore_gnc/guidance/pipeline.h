@@ -54,9 +54,6 @@ class GuidancePipeline {
   void rejectPath(const std::string& why);
   // Obstacles seen at time t (NED). Non-finite geometry is dropped and counted.
   void setObstacles(const std::vector<SbbObstacle>& obstacles, double t);
-  // Obstacles the mission knows of (a surfaced AUV being recovered, which the LiDAR may not see): planned round and
-  // kept clear of as the perceived ones, for as long as they are set (empty: none). A change replans.
-  void setKeepOut(const std::vector<SbbObstacle>& keep_out);
   // The hull's reach about the reference point: a hold point keeps the hull, not the point, clear (none: the point).
   void setHullReach(const HullReach& hull) { hull_ = hull; }
   // Navigation state at time t.
@@ -75,13 +72,12 @@ class GuidancePipeline {
   // A hold point too close to an obstacle (sbb/hold_clearance) is refused: the nearest clear point is held instead,
   // and the status says so (counter hold_point_in_box).
   void keepHoldClear(double t, GuidanceOutput& out);
-  std::vector<SbbObstacle> planningObstacles(double t) const;  // the perceived (while fresh) and the keep-out ones
 
   GuidanceParams p_;
   LosGuidance los_;
   std::vector<Eigen::Vector3d> base_path_, planned_;
   std::vector<bool> planned_detour_;
-  std::vector<SbbObstacle> obstacles_, keep_out_;
+  std::vector<SbbObstacle> obstacles_;
   SbbPlan plan_;  // the last plan: its boxes' sides are kept while safe
   VehicleState state_;
   double state_time_ = 0.0, obstacles_time_ = -1e300;

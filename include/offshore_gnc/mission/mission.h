@@ -18,7 +18,6 @@
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/guidance/los.h"
-#include "offshore_gnc/guidance/sbb.h"
 #include "offshore_gnc/safety/region.h"
 
 namespace offshore_gnc {
@@ -162,7 +161,6 @@ struct UsvMissionParams {
   double recovery_distance = 4.0;   // recovering, the bow holds this far from the surfaced AUV [m]
   double recovery_replan = 2.0;     // the recovery is planned again when the AUV's position moved this far [m]
   double settle_time = 10.0;        // both vehicles stationary this long: RECOVERED [s]
-  double auv_length = 1.5;          // recovering, the surfaced AUV is an obstacle this long for guidance [m]
   static const ParamTable<UsvMissionParams>& table();
   void validate() const;
 };
@@ -205,12 +203,6 @@ class UsvMission {
   // How far the hull reaches ahead of the reference point (models::HullFootprint's bow): the recovery distance is the
   // bow's, so the reference point holds this much farther off.
   void setBowReach(double metres) { bow_reach_ = std::max(0.0, metres); }
-  // What guidance must plan round and keep clear of that its LiDAR may not see: the surfaced AUV while the USV
-  // recovers it (id kAuvObstacleId, auv_length square). The recovery's own corners round it are waypoints of an
-  // ordinary path: the SBB planner drops those in an obstacle's passing box and the 16 m circle of acceptance cuts
-  // the rest (the hull touched the AUV in 7 of 100 campaign runs). Empty otherwise.
-  std::vector<guidance::SbbObstacle> keepOut() const;
-  static constexpr std::uint32_t kAuvObstacleId = 0xA0000000u;
   void tick(double t);                     // time-based checks (peer timeout, manual released)
   std::optional<std::vector<Eigen::Vector2d>> takePath();
   double distanceToGo() const;             // along the transit path; NaN outside the transit

@@ -132,32 +132,6 @@ TEST(GuidancePipeline, ObstaclesNotRefreshedExpireAtTheNextReplan) {
   EXPECT_EQ(g.plannedPath().size(), route().size());
 }
 
-TEST(GuidancePipeline, TheMissionsKeepOutIsPlannedRoundUntilItIsCleared) {
-  // A surfaced AUV the LiDAR does not see: the route round it as round a buoy, kept while perception is silent
-  // (it does not expire), gone once the mission clears it.
-  GuidancePipeline g(GuidanceParams::preset("usv"));
-  GuidanceOutput o;
-  g.setPath(route());
-  g.setState(at(10, 0), 0.0);
-  g.setKeepOut({buoy(50, 0.5)});
-  ASSERT_TRUE(g.update(0.1, 0.1, o));
-  ASSERT_FALSE(g.plan().boxes.empty());
-  EXPECT_NE(g.plannedPath(), route());  // a detour
-  for (const auto& b : g.plan().boxes)
-    for (const auto& w : g.plannedPath()) EXPECT_FALSE(b.contains(w.head<2>(), 1e-6)) << w.transpose();
-  g.setPath(route());
-  g.setState(at(10, 0), 29.9);
-  ASSERT_TRUE(g.update(30.0, 0.1, o));  // no LiDAR for 30 s: the keep-out stays
-  EXPECT_FALSE(g.plan().boxes.empty());
-  g.setKeepOut({});
-  g.setState(at(10, 0), 30.0);
-  ASSERT_TRUE(g.update(30.1, 0.1, o));
-  EXPECT_TRUE(g.plan().boxes.empty());
-  EXPECT_EQ(g.plannedPath().size(), route().size());
-  g.setKeepOut({buoy(std::nan(""), 0)});
-  EXPECT_EQ(g.counters().get("bad_obstacles"), 1u);
-}
-
 TEST(GuidancePipeline, BadInputIsRefusedWithAReason) {
   GuidancePipeline g(GuidanceParams::preset("usv"));
   GuidanceOutput o;

@@ -454,15 +454,8 @@ TEST(UsvMission, RecoversTheSurfacedAuvDownstreamBowOn) {
   arrived(m);
   m.onAuvStatus(AuvPhase::Ascent, {50, 0, 1}, false, 160.0);
   EXPECT_EQ(m.phase(), UsvPhase::Arrived);  // not at the surface yet
-  EXPECT_TRUE(m.keepOut().empty());
   m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
   ASSERT_EQ(m.phase(), UsvPhase::Recovery);
-  // guidance plans round the surfaced AUV (its LiDAR may not see it)
-  const auto keep_out = m.keepOut();
-  ASSERT_EQ(keep_out.size(), 1u);
-  EXPECT_EQ(keep_out[0].id, UsvMission::kAuvObstacleId);
-  EXPECT_LT((keep_out[0].origin - Eigen::Vector2d(50, 0)).norm(), 1e-9);
-  EXPECT_DOUBLE_EQ(keep_out[0].length, 1.5);
   // the bow recovery_distance (4 m) off the AUV: the reference point 4 + 5.3 m east of it, the run-in 10 m farther
   EXPECT_LT((m.recoveryPoint() - Eigen::Vector2d(50, 9.3)).norm(), 1e-9);
   auto run_in = m.takePath();
