@@ -118,9 +118,7 @@ const ParamTable<AuvMissionParams>& AuvMissionParams::table() {
       .number("surface_clearance", &P::surface_clearance, 0.0, 500.0, "m",
               "surface at least this far from where the USV holds or is bound by its last status (moving at depth first)")
       .number("station_radius", &P::station_radius, 0.1, 50.0, "m",
-              "on station at its hold point within this; stationary at the surface: moved less over still_window")
-      .number("still_window", &P::still_window, 1.0, 600.0, "s",
-              "at the surface, stationary: its position, smoothed over a quarter of this, judged over this long");
+              "on station at its hold point, and stationary at the surface, within this");
   return t;
 }
 
@@ -210,17 +208,6 @@ void AuvMission::onPose(const Eigen::Vector3d& ned, double yaw, double t) {
   }
   pose_ = ned;
   yaw_ = yaw;
-  if (phase_ != AuvPhase::Surfaced && phase_ != AuvPhase::Recovered) {
-    still_.clear();
-  } else if (still_.empty() || t > still_.back().first) {
-    Eigen::Vector2d smooth = ned.head<2>();
-    if (!still_.empty()) {  // first order, time constant a quarter of the window
-      const double a = 1.0 - std::exp(-(t - still_.back().first) / (0.25 * p_.still_window));
-      smooth = still_.back().second + a * (smooth - still_.back().second);
-    }
-    still_.emplace_back(t, smooth);
-    while (still_.size() > 2 && still_[1].first <= t - p_.still_window) still_.pop_front();  // one just older stays
-  }
   if (phase_ == AuvPhase::TargetFound && std::isnan(on_station_since_) &&
       (ned.head<2>() - hold_.head<2>()).norm() <= p_.station_radius)
     on_station_since_ = t;
@@ -243,12 +230,8 @@ void AuvMission::onSafetySurface(double t) {
 }
 
 bool AuvMission::stationary() const {
-  if ((phase_ != AuvPhase::Surfaced && phase_ != AuvPhase::Recovered) || still_.empty() ||
-      still_.back().first - still_.front().first < p_.still_window)
-    return false;
-  const Eigen::Vector2d& now = still_.back().second;
-  return std::all_of(still_.begin(), still_.end(),
-                     [&](const auto& s) { return (s.second - now).norm() <= p_.station_radius; });
+  return (phase_ == AuvPhase::Surfaced || phase_ == AuvPhase::Recovered) && pose_ &&
+         (pose_->head<2>() - hold_.head<2>()).norm() <= p_.station_radius;
 }
 
 void AuvMission::start(double t) {
@@ -380,7 +363,7 @@ std::string AuvMission::detail() const {
     case AuvPhase::Surfaced:
       os << "at the surface, holding at N " << hold_.x() << " E " << hold_.y();
       if (pose_) os << " (" << (pose_->head<2>() - hold_.head<2>()).norm() << " m off it)";
-      os << (stationary() ? ", still" : ", moving") << "; waiting to be recovered";
+      os << (stationary() ? ", on it" : "") << "; waiting to be recovered";
       break;
     case AuvPhase::Recovered: os << "recovered: the USV holds beside it"; break;
   }

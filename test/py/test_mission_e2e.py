@@ -36,12 +36,10 @@ MAX_AUV_RMSE_M = 0.5
 ACOLOR_MAX_AUV_RMSE_M = 1.2
 # After the find (issue 36's goals, docs/mission.md "Recovery"): the AUV holds within 2 m of its point, the USV's hull
 # ends 1-5 m off it and never came closer than 1 m. 5 runs of the job (2026-12-04): hold 1.20-1.72 m, hull at the end
-# 3.69-4.90 m, never closer than 3.33 m, 167-202 s from the find to RECOVERED. Since the USV closes in once the AUV is
-# still (steady, not within 1 m of its point: docs/mission.md) the fresh-clone run of 2026-12-04 ended 6.39 m off:
-# the Girona500 of the ROS job holds at the surface on its USBL navigation, and the USV places itself by what it
-# reports. Over issue 36's 5 m goal: the bound says where it stands, and the goal stays open.
+# 3.69-4.90 m, never closer than 3.33 m, 167-202 s from the find to RECOVERED. (Closing in once the AUV's report was
+# steady rather than on its point, 2026-12-04: 6.39 m at the end in one run, the hull on the AUV in the next.)
 MAX_AUV_HOLD_M = 2.0
-RECOVERY_DISTANCE_M = (1.0, 7.0)
+RECOVERY_DISTANCE_M = (1.0, 5.0)
 MIN_AUV_CLEARANCE_M = 1.0
 USV_TIMEOUT_S = 30.0  # config/mission/auv.yaml (mission::AuvMissionParams): no USV status this long, it comes up
 # holding at the surface without the USV (no USBL fixes: the DVL and the AHRS alone): 0.63-0.66 m in 2 runs of the
@@ -98,10 +96,10 @@ def test_acolor_mission_on_usbl_at_another_site_finds_the_target_and_ends_safe(t
     PWM for guidance's speed, navigation on USBL fixes and its commands (no DVL). At Hobart (southern and eastern
     hemispheres): the scenario's origin reaches every node of both vehicles, no vehicle file names a site."""
     r, m = run("hobart.yaml", tmp_path / "acolor", "--auv-model", "acolor", "--max-sim-time", "900")
-    # Its hold on USBL fixes alone is loose (config/control/acolor_sim.yaml). ROS-free (seeds 1-3, 2026-12-04) it is
-    # recovered at 481-617 s, 1.5-7.0 m off its point at the surface; the ROS job's run of the same day ended with
-    # the AUV still at the surface 1.0 m off its point and the USV closing in, not yet recovered at 900 s
-    # (auv_adrift). Either way safe, at the surface and said so.
+    # Its hold on USBL fixes alone is loose (config/control/acolor_sim.yaml): at the surface it holds within a few
+    # metres (since 2026-12-04; it had run off) but seldom within the mission's 1 m of its point for the settle time,
+    # so the USV may wait at its run-in to the end (auv_adrift) or close in (success). Either way safe, at the
+    # surface and said so.
     assert r.returncode in (0, 1), r.stdout[-3000:]
     assert m["outcome"] in ("success", "auv_adrift") and m["auv_final_phase"] in ("SURFACED", "RECOVERED"), m
     assert m["usv_final_phase"] in ("RECOVERY", "RECOVERED"), m

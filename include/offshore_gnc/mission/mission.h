@@ -8,8 +8,6 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <deque>
-#include <utility>
 #include <limits>
 #include <optional>
 #include <string>
@@ -57,8 +55,7 @@ struct AuvMissionParams {
   double ascent_rate = 0.1;          // the depth reference rises at most this fast [m/s]
   double surface_depth = 0.5;        // shallower than this the AUV is at the surface [m]
   double surface_clearance = 10.0;   // surface at least this far from where the USV holds or is bound [m]
-  double station_radius = 1.0;       // on station this close to its point; at the surface, stationary: moved less [m]
-  double still_window = 10.0;        // at the surface, stationary: over this long, smoothed over a quarter of it [s]
+  double station_radius = 1.0;       // on station (and, at the surface, stationary) this close to its point [m]
   CoverageArea coverage;             // from the mission config or, in simulation, the scenario
   static const ParamTable<AuvMissionParams>& table();  // without `coverage` (read under its own prefix)
   void validate() const;
@@ -110,11 +107,9 @@ class AuvMission {
   const std::optional<Eigen::Vector3d>& pose() const { return pose_; }  // the last navigation estimate
   // TargetFound: when the vehicle first came within station_radius of its hold point (NaN before).
   double onStationSince() const { return on_station_since_; }
-  // At the surface and still (what the USV waits for before RECOVERED): its position, smoothed over a quarter of
-  // still_window (the waves' orbital motion is no drift), moved less than station_radius over the last still_window.
-  // Not "within station_radius of its point": the Girona500's Table 4.3 hold (proportional, its integral 50 N at
-  // most) stands 1.6 m off against the 240 N of a 6.5 m/s wind and its waves, steady as a moored buoy, and the USV
-  // waited 30 min for it.
+  // At the surface within station_radius of the point it holds (what the USV waits for before RECOVERED). Judged
+  // on steadiness instead (the position moving less than that over 10 s), the ROS job's USV closed in on a Girona500
+  // whose USBL navigation at the surface was steady but off, and touched it (2026-12-04): the point keeps it honest.
   bool stationary() const;
   double searchEndedAt() const { return searchOver() ? found_t_ : std::numeric_limits<double>::quiet_NaN(); }
   double ascentStart() const { return ascent_t_; }          // NaN before the ascent
@@ -141,7 +136,6 @@ class AuvMission {
   std::optional<std::vector<Eigen::Vector3d>> path_due_;
   std::optional<Eigen::Vector2d> usv_;  // where the USV is, or will hold
   std::optional<UsvPhase> usv_phase_;
-  std::deque<std::pair<double, Eigen::Vector2d>> still_;  // at the surface: (t, smoothed position) over still_window
   Eigen::Vector3d hold_;
   std::string why_ascent_;
   double start_time_ = 0.0, detection_time_, first_tick_ = 0.0, found_t_ = 0.0, usv_t_ = -1e300, yaw_ = 0.0;
