@@ -206,7 +206,8 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
   // hold, slowly, not pass at speed: it needs only the hold clearance (safeHoldPoint), so one inside a passing box
   // is moved just clear of the obstacle's hold box instead of dropped (dropped, a station 10 m past a moored 12 m
   // vessel left the USV holding at the detour's last corner, 18 m from the target).
-  if (!out.blocked && out.path.size() >= 2 && out.path.back().head<2>() == path.back().head<2>()) {
+  const bool keep_goal = !out.blocked && out.path.size() >= 2;  // unblocked, the goal is the last waypoint (push)
+  if (keep_goal) {
     Eigen::Vector3d& goal = out.path.back();
     const Eigen::Vector2d d = goal.head<2>() - out.path[out.path.size() - 2].head<2>();
     const SafeHold h = safeHoldPoint(goal.head<2>(), std::atan2(d.y(), d.x()), obs, p, std::nullopt, HullReach{});
@@ -218,7 +219,7 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
   for (std::size_t i = 0; i < out.path.size(); ++i) {
     bool inside = false;
     for (const auto& b : all_boxes) inside = inside || b.contains(out.path[i].head<2>(), 1e-6);
-    if (inside && i > 0 && !(i + 1 == out.path.size() && !out.blocked)) {
+    if (inside && i > 0 && !(keep_goal && i + 1 == out.path.size())) {
       out.modified = true;
       if (out.status.empty()) out.status = "waypoint inside a safety box dropped";
       continue;
