@@ -26,6 +26,7 @@ THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4
 }
 
 MODE_FOLLOW_PATH = 1  # GuidanceStatus.MODE_FOLLOW_PATH (for the plots; the metrics tool filters the same)
+REFERENCE_FOLLOW = 1  # GuidanceStatus.REFERENCE_FOLLOW
 QUALITY_OK = 0  # UsblFix.QUALITY_OK: the only fixes navigation may use
 QUALITY_NAMES = {1: "filter_error", 2: "fit_error", 3: "stale", 4: "depth", 5: "no_position"}  # UsblFix.QUALITY_*
 # A USBL fix farther than this from the AUV's true position at its stamp is an outlier: three times the 1 m sigma
@@ -48,31 +49,23 @@ def tracking_metrics(path, selector=None):
     return {"rmse": d["rmse_m"], "sd": d["sd_m"], "mae": d["mae_m"], "n": d["samples"]}
 
 
-def split_tracking(status_msgs, path=None, truth=None):
+def split_tracking(status_msgs, truth=None):
     """Cross-track figures of a vehicle's GuidanceStatus samples: all of them, and split at the first waypoint
     reached: the approach (leg 1, from wherever the vehicle was to the path's first switch; thesis Table 4.4 leaves
     it out) and the tracking after it (legs 2 on). Each on the guidance's own error (on its navigation estimate) and,
-    given the followed path [(north, east)] (or the paths in time, [(t, path)]: each sample's the latest at its time)
-    and the true track [(t, north, east, ...)], on the truth: the true position's distance from the active leg. All
-    through the same C++ tool as the bag figures, fed CSV files."""
+    given the true track [(t, north, east, ...)], on the truth: the true position's distance from the leg followed,
+    the line through the sample's reference point (the estimate's projection on the leg) along its path angle. Not
+    the published path's waypoints k-1 and k: LOS merges waypoints closer than min_leg_length, so active_leg need not
+    count them. All through the same C++ tool as the bag figures, fed CSV files."""
     import tempfile
-    timed = bool(path) and isinstance(path[0][1], list)
-    times = [x[0] for x in path] if timed else []
     truth_xte = []
     for t, m in status_msgs:
-        k = m.active_leg
-        if timed:
-            i = bisect.bisect_right(times, t)
-            path_now = path[i - 1][1] if i else None
-        else:
-            path_now = path
         p = _interpolate(truth or [], t)
-        if not path_now or p is None or not 1 <= k < len(path_now):
+        if p is None or m.reference_mode != REFERENCE_FOLLOW:
             truth_xte.append(float("nan"))
             continue
-        (an, ae), (bn, be) = path_now[k - 1], path_now[k]
-        length = math.hypot(bn - an, be - ae)
-        truth_xte.append(((bn - an) * (p[1] - ae) - (be - ae) * (p[0] - an)) / length if length > 0 else float("nan"))
+        q, chi = m.reference_point, m.path_angle
+        truth_xte.append(-(p[0] - q.x) * math.sin(chi) + (p[1] - q.y) * math.cos(chi))
     out = {}
     with tempfile.TemporaryDirectory() as d:
         for name, keep in (("all", lambda m: True), ("approach", lambda m: m.active_leg < 2),
@@ -519,16 +512,8 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     auv_xte = [(t, m.cross_track_error) for t, m in auv_searching if m.mode == MODE_FOLLOW_PATH]
     wait_drift, hold_p95 = station_keeping(usv_track, u["/usv/mission/status"], u["/usv/guidance/status"])
     us = tracking_metrics(usv_bag or "", "/usv/guidance/status")
-    # the path followed: the planner's when it published one (SBB waypoints included), else the mission's. The AUV's
-    # search: its coverage, the longest (the hold and ascent paths come after it). The USV: the one guidance had at
-    # each sample (the transit, then the recovery's), as the ROS-free mission measures it.
-    def followed(bag, v):
-        return [(t, m) for t, m in (bag["/%s/guidance/planned_path" % v] or bag["/%s/guidance/path" % v]) if m.poses]
-    auv_paths = followed(a, "auv")
-    auv_path = path_ned(max(auv_paths, key=lambda x: len(x[1].poses))[1]) if auv_paths else None
-    au_split = split_tracking(auv_searching, auv_path, auv_track)
-    us_true = split_tracking(u["/usv/guidance/status"], [(t, path_ned(m)) for t, m in followed(u, "usv")],
-                             usv_track)["all_truth"]
+    au_split = split_tracking(auv_searching, auv_track)
+    us_true = split_tracking(u["/usv/guidance/status"], usv_track)["all_truth"]
     au, au_approach = au_split["tracking_truth"], au_split["approach_truth"]
     nav_during = [e for t, e in nav_err if t <= auv_end_t]
     nav_after = [e for t, e in nav_err if t > auv_end_t]

@@ -28,16 +28,17 @@ void record(VehicleRecord& r, const VehicleState& truth, long step, const guidan
   if (!g) return;
   if (g->los.mode == guidance::Mode::kFollowPath) {
     r.xte.emplace_back(truth.t, g->los.cross_track_error);
-    // as report.split_tracking: the leg from waypoint k-1 to k of the path followed, e positive to starboard
-    const std::vector<Eigen::Vector3d>& path = pipeline.plannedPath();
-    const std::size_t k = g->los.active_leg;
+    // As report.split_tracking: the true position's distance from the leg guidance followed, the line through the
+    // estimate's projection on it along the leg's angle (e positive to starboard). Not plannedPath()[k-1..k]: LOS
+    // merges waypoints closer than min_leg_length, so its leg index need not count the planned path's waypoints.
     double e_truth = kNaN;
-    if (k >= 1 && k < path.size()) {
-      const Eigen::Vector2d a = path[k - 1].head<2>(), d = path[k].head<2>() - a, p = truth.position.head<2>() - a;
-      if (d.norm() > 0.0) e_truth = (d.x() * p.y() - d.y() * p.x()) / d.norm();
-    }
+    if (g->reference.mode == ReferenceMode::kFollow)
+      guidance::legGeometry(g->reference.point.head<2>(),
+                            g->reference.point.head<2>() + Eigen::Vector2d(std::cos(g->reference.path_angle),
+                                                                           std::sin(g->reference.path_angle)),
+                            truth.position.head<2>(), &e_truth, nullptr);
     r.xte_truth.emplace_back(truth.t, e_truth);
-    if (k >= 2) {
+    if (g->los.active_leg >= 2) {
       r.xte_tracking.emplace_back(truth.t, g->los.cross_track_error);
       r.xte_tracking_truth.emplace_back(truth.t, e_truth);
     } else {

@@ -86,8 +86,11 @@ def test_report_from_bags(tmp_path):
 
 
 def test_auv_tracking_counted_from_the_first_waypoint(tmp_path):
-    """The AUV's cross-track figures on the truth (its true position's distance from the active leg) leave out
-    the approach to its path (leg 1), reported apart (Table 4.4); the guidance's own figure (on the estimate) too."""
+    """The AUV's cross-track figures on the truth (its true position's distance from the leg followed: the line
+    through the status' reference point along its path angle) leave out the approach to its path (leg 1), reported
+    apart (Table 4.4); the guidance's own figure (on the estimate) too. The leg index is not looked up in the
+    published path (LOS merges waypoints closer than min_leg_length: the index need not count the path's)."""
+    import math
     import rosbag
     import rospy
     from geometry_msgs.msg import PoseStamped
@@ -98,7 +101,8 @@ def test_auv_tracking_counted_from_the_first_waypoint(tmp_path):
     with rosbag.Bag(auv_bag, "w") as b:
         p = Path()
         p.header.frame_id = "map_ned"
-        for n, e in ((0.0, 0.0), (0.0, 10.0), (20.0, 10.0), (20.0, 20.0)):  # legs: east, north, east
+        # a duplicate waypoint (merged by LOS): index 2 of this path is not the leg LOS calls 2
+        for n, e in ((0.0, 0.0), (0.0, 10.0), (0.0, 10.0), (20.0, 10.0), (20.0, 20.0)):
             ps = PoseStamped()
             ps.pose.position.x, ps.pose.position.y = n, e
             p.poses.append(ps)
@@ -111,12 +115,16 @@ def test_auv_tracking_counted_from_the_first_waypoint(tmp_path):
             o.pose.pose.position.x = float(i) if i < 10 else 10.2        # ENU x = east
             o.pose.pose.position.y = 5.0 if i < 10 else float(i - 10)    # ENU y = north
             b.write("/auv/ground_truth/odom", o, t)
-            g = GuidanceStatus(mode=GuidanceStatus.MODE_FOLLOW_PATH, num_waypoints=4)
+            g = GuidanceStatus(mode=GuidanceStatus.MODE_FOLLOW_PATH, num_waypoints=4,
+                               reference_mode=GuidanceStatus.REFERENCE_FOLLOW)
             g.active_leg = 1 if i < 10 else 2
+            g.path_angle = math.pi / 2 if i < 10 else 0.0
+            g.reference_point.x, g.reference_point.y = (0.0, float(i)) if i < 10 else (float(i - 10), 10.0)
             g.cross_track_error = 0.1  # the guidance's own error, on the estimate
             if i < 30:
                 b.write("/auv/guidance/status", g, t)
-        g = GuidanceStatus(mode=GuidanceStatus.MODE_STATION_KEEPING, active_leg=2, cross_track_error=9.0)
+        g = GuidanceStatus(mode=GuidanceStatus.MODE_STATION_KEEPING, active_leg=2, cross_track_error=9.0,
+                           reference_mode=GuidanceStatus.REFERENCE_HOLD)
         b.write("/auv/guidance/status", g, rospy.Time(130))  # not following: in neither figure
     m = report.build(None, auv_bag, None, str(tmp_path / "report"))
     assert m["auv_xte_true_samples"] == 20 and m["auv_xte_true_rmse_m"] == pytest.approx(0.2, abs=1e-4)

@@ -96,3 +96,25 @@ def test_sites_on_every_side_of_the_earth_share_the_default_geometry(name):
     for d in (site, default):
         d.pop("origin"), d.pop("name")
     assert site == default
+
+
+def rosfree(name):
+    r = subprocess.run([tools.path("mission_rosfree"), "--scenario", os.path.join(REPO, "config", "scenarios", name)],
+                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def test_the_mission_at_every_site_succeeds_as_at_home():
+    """The ROS-free mission (the classes the vehicles run) at each shipped site: a success, with the default's figures.
+    The geometry is the same in local NED, so only geodesy could move them (the simulated GPS and the USBL fixes go
+    through WGS84 about the site's origin): the figures agree to centimetres (measured: equal to the 4th digit)."""
+    home = rosfree("pyhajarvi.yaml")
+    assert home["outcome"] == "success", home["reason"]
+    keys = ("usv_xte_true_rmse_m", "usv_xte_est_rmse_m", "usv_hold_p95_m", "auv_nav_rmse_m", "auv_xte_true_rmse_m",
+            "target_error_m", "usv_auv_min_clearance_m")
+    for name in sorted(SITES):
+        m = rosfree(name)
+        assert m["outcome"] == "success", (name, m["reason"])
+        for k in keys:
+            assert m[k] == pytest.approx(home[k], abs=0.02), (name, k, m[k], home[k])
