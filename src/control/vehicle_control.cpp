@@ -272,6 +272,9 @@ const ParamTable<Girona500ControlParams>& Girona500ControlParams::table() {
               "largest heading offset from guidance's toward the force demand in a cross current (0 = off)")
       .number("hold_crab", &P::hold_crab, 0.0, 1.5, "rad",
               "the same while holding a point (the spot after the find, the surface; 0 = off)")
+      .number("hold_ki", &P::hold_ki, 0.0, 1000.0, "N/(m s)",
+              "holding a point: integral gain on the horizontal position error, beside the north/east PIDs (0 = off)")
+      .number("hold_i_limit", &P::hold_i_limit, 0.0, 1000.0, "N", "bound on the hold integral's force")
       .number("crab_tf", &P::crab_tf, 0.0, 100.0, "s", "low-pass time constant of the force demand the crab follows")
       .number("crab_force", &P::crab_force, 1.0, 1000.0, "N",
               "sideways part of the force demand left to the sway thruster before the bow turns");
@@ -306,6 +309,7 @@ Girona500Out Girona500Controller::update(const VehicleState& s, const MotionRefe
     d_.reset();
     yaw_.reset();
     cross_offset_ = 0.0;
+    hold_i_.setZero();
     force_lp_.setZero();
     crab_ = 0.0;
     out.alloc = alloc_.allocate(Eigen::Vector4d::Zero());
@@ -328,8 +332,17 @@ Girona500Out Girona500Controller::update(const VehicleState& s, const MotionRefe
   // Ground velocity in NED (the navigation's body-frame velocity over ground rotated by yaw).
   const Eigen::Vector2d v_ned(c * s.velocity.x() - sn * s.velocity.y(), sn * s.velocity.x() + c * s.velocity.y());
   const Eigen::Vector3d err = target - s.position;
-  const double fn = n_.update(err.x(), v_ref.x() - v_ned.x(), p_.dt);
-  const double fe = e_.update(err.y(), v_ref.y() - v_ned.y(), p_.dt);
+  Eigen::Vector2d f_hold = Eigen::Vector2d::Zero();
+  if (r.mode == ReferenceMode::kHold && p_.hold_ki > 0.0) {
+    hold_i_ += err.head<2>() * p_.dt;
+    const double bound = p_.hold_i_limit / p_.hold_ki;  // anti-windup: the force, not the error, is bounded
+    if (hold_i_.norm() > bound) hold_i_ *= bound / hold_i_.norm();
+    f_hold = p_.hold_ki * hold_i_;
+  } else {
+    hold_i_.setZero();
+  }
+  const double fn = n_.update(err.x(), v_ref.x() - v_ned.x(), p_.dt) + f_hold.x();
+  const double fe = e_.update(err.y(), v_ref.y() - v_ned.y(), p_.dt) + f_hold.y();
   const double fd = d_.update(err.z(), -s.velocity.z(), p_.dt);
   updateCrab(r, Eigen::Vector2d(fn, fe));
   const double tn = yaw_.update(angleDiff(wrapAngle(r.heading + crab_), s.yaw), -s.angular_rate.z(), p_.dt);

@@ -97,9 +97,10 @@ def test_acolor_mission_on_usbl_at_another_site_finds_the_target_and_ends_safe(t
     hemispheres): the scenario's origin reaches every node of both vehicles, no vehicle file names a site."""
     r, m = run("hobart.yaml", tmp_path / "acolor", "--auv-model", "acolor", "--max-sim-time", "900")
     # Its hold on USBL fixes alone is loose (config/control/acolor_sim.yaml): at the surface it holds within a few
-    # metres (since 2026-12-04; it had run off) but seldom within the mission's 1 m of its point for the settle time,
-    # so the USV may wait at its run-in to the end (auv_adrift) or close in (success). Either way safe, at the
-    # surface and said so.
+    # metres (since 2026-12-04; it had run off) and, with the hold's slow integral (2026-12-05), ROS-free it sits
+    # within the mission's 1 m and is recovered in 4 of 5 seeds; over ROS it has not yet (2026-12-05: surface
+    # excursion 4.45 m, the USV at its run-in, auv_adrift at 900 s). So success or auv_adrift; either way safe, at
+    # the surface and said so.
     assert r.returncode in (0, 1), r.stdout[-3000:]
     assert m["outcome"] in ("success", "auv_adrift") and m["auv_final_phase"] in ("SURFACED", "RECOVERED"), m
     assert m["usv_final_phase"] in ("RECOVERY", "RECOVERED"), m

@@ -133,6 +133,14 @@ struct Girona500ControlParams {
   // by default: beam on to 0.3 m/s the Girona500 needs 46 N of sway (its 40 N thruster let it go), and while it
   // holds its sonar only has to keep the target within its sector, not pass it on a leg.
   double hold_crab = 1.5;        // [rad]
+  // Holding a point, an integral of the horizontal position error in NED on top of Table 4.3's north and east PIDs.
+  // Their own integral (K_I 0.0106, 50 N) takes over an hour to build against a steady push, so alone they stand
+  // off in proportion to it: 1.6 m against a 6.5 m/s wind's sea at the surface (240 N), and the recovery, which
+  // waits for an AUV within 1 m of its point, never began. Reset whenever the vehicle does not hold. 15 N/(m s)
+  // (the integral's time constant K_P / hold_ki 10 s, beside the PD's 8 s period) from a tuning campaign
+  // (docs/campaign.md, 2026-12-05): 0 12 of 24, 5 13, 15 14; auv_adrift 3, 1, 1.
+  double hold_ki = 15.0;         // [N/(m s)]
+  double hold_i_limit = 200.0;   // bound on the integral's force [N]
   double crab_tf = 5.0;          // low-pass time constant of the force demand [s]
   double crab_force = 40.0;      // the lateral thruster's limit: the bow turns once it is not enough [N]
   Eigen::MatrixXd tcm;           // 4 x n (surge, sway, heave, yaw); default: models::AuvParams::girona500().tcm()
@@ -162,6 +170,7 @@ class Girona500Controller {
   Girona500ControlParams p_;
   Pid n_, e_, d_, yaw_;
   double cross_offset_ = 0.0;
+  Eigen::Vector2d hold_i_ = Eigen::Vector2d::Zero();  // the hold's integral of the NED error [m s]
   Eigen::Vector2d force_lp_ = Eigen::Vector2d::Zero();  // low-passed NED force demand (crab)
   double crab_ = 0.0;  // heading offset from guidance's heading [rad]
   void updateCrab(const MotionReference& r, const Eigen::Vector2d& f_ned);

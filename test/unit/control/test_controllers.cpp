@@ -175,3 +175,27 @@ TEST(Girona500, HoldingTurnsTheBowIntoALateralDemandItsSwayThrusterCannotMeet) {
   for (int i = 0; i < 300; ++i) following.update(s, f);
   EXPECT_NEAR(following.update(s, f).tau(3), 0.0, 1.0);
 }
+
+TEST(Girona500, HoldingIntegratesTheStandingErrorAwayWithinItsBound) {
+  // Table 4.3's own integral (K_I 0.0106) would take an hour to build against a steady push: a hold stood off in
+  // proportion to it (1.6 m against 240 N at the surface). The hold's integral (hold_ki N per metre-second, bounded
+  // at hold_i_limit N) adds to the demand while the error stands, and starts from nothing at the next hold.
+  Girona500ControlParams p;
+  Girona500Controller g(p);
+  VehicleState s;
+  s.position = Eigen::Vector3d(-1.0, 0, 2);  // 1 m south of the point, facing north: the demand is ahead
+  const double first = g.update(s, holdAt(0, 0, 0.0)).tau(0);
+  EXPECT_NEAR(first, p.north.kp + p.hold_ki * p.dt, 1.0);
+  for (int i = 1; i < 100; ++i) g.update(s, holdAt(0, 0, 0.0));  // 10 s
+  EXPECT_NEAR(g.update(s, holdAt(0, 0, 0.0)).tau(0), p.north.kp + p.hold_ki * 10.1, 2.0);
+  for (int i = 0; i < 300; ++i) g.update(s, holdAt(0, 0, 0.0));  // 40 s: the bound
+  EXPECT_NEAR(g.update(s, holdAt(0, 0, 0.0)).tau(0), p.north.kp + p.hold_i_limit, 2.0);
+  MotionReference f = follow(0.0, 0.0, 2.0);  // following: no hold integral, and the next hold starts afresh
+  f.point = Eigen::Vector3d(0, 0, 2);
+  EXPECT_NEAR(g.update(s, f).tau(0), p.north.kp * (1.0 + p.lead), 2.0);  // the reference `lead` ahead
+  EXPECT_NEAR(g.update(s, holdAt(0, 0, 0.0)).tau(0), first, 2.0);
+  p.hold_ki = 0.0;  // off: Table 4.3 alone
+  Girona500Controller plain(p);
+  for (int i = 0; i < 400; ++i) plain.update(s, holdAt(0, 0, 0.0));
+  EXPECT_NEAR(plain.update(s, holdAt(0, 0, 0.0)).tau(0), p.north.kp, 1.0);
+}
