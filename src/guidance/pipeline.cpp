@@ -183,7 +183,9 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
 void GuidancePipeline::keepHoldClear(double t, GuidanceOutput& out) {
   if (!p_.sbb_enabled || t - obstacles_time_ > p_.obstacle_timeout) return;
   const Eigen::Vector2d asked = out.reference.point.head<2>();
-  if (!(refused_hold_ - asked).isZero(0.1)) moved_hold_.reset();  // another hold point: choose afresh
+  // Another hold point: choose afresh. One a little off the last (a recovery's point follows the AUV's reported
+  // position) keeps the last move as a hint, so the side it chose is kept.
+  if ((refused_hold_ - asked).norm() > p_.sbb.hold_clearance) moved_hold_.reset();
   const SafeHold h = safeHoldPoint(asked, out.reference.heading, obstacles_, p_.sbb, moved_hold_, hull_);
   if (!h.moved) return;
   if (!moved_hold_) counters_.increment("hold_point_in_box");

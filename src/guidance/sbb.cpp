@@ -288,21 +288,30 @@ SafeHold safeHoldPoint(const Eigen::Vector2d& point, double heading, const std::
     out.point = *previous;
     return out;
   }
-  // Candidates: straight out through each edge of every box, and every box's corners; the nearest one that no
-  // box contains (overlapping boxes push a point out of one into another).
+  // Candidates: straight out through each edge of every box from the point (and from the last moved point, when
+  // a box now takes that in), and every box's corners; of those no box contains (overlapping boxes push a point out
+  // of one into another), the nearest to the point, or after a move the one nearest to the point and the last
+  // move together: with the point between two boxes, the nearest alone flipped from one side to the other, 10 m,
+  // whenever a jittering LiDAR box took in the side held (shipped two_obstacles.yaml: the hull then met a buoy).
   const double eps = 1e-3;
+  const bool had = previous && previous->allFinite();
+  const Eigen::Vector2d last = had ? f.toLeg(*previous) : Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector2d> cand;
   for (const auto& r : rs) {
-    cand.push_back({r.s_lo - eps, 0.0});
-    cand.push_back({r.s_hi + eps, 0.0});
-    cand.push_back({0.0, r.e_lo - eps});
-    cand.push_back({0.0, r.e_hi + eps});
+    for (const Eigen::Vector2d& from : {Eigen::Vector2d::Zero().eval(), last}) {
+      cand.push_back({r.s_lo - eps, from.y()});
+      cand.push_back({r.s_hi + eps, from.y()});
+      cand.push_back({from.x(), r.e_lo - eps});
+      cand.push_back({from.x(), r.e_hi + eps});
+    }
     for (double cs : {r.s_lo - eps, r.s_hi + eps})
       for (double ce : {r.e_lo - eps, r.e_hi + eps}) cand.push_back({cs, ce});
   }
   double best = std::numeric_limits<double>::infinity();
-  for (const auto& c : cand)
-    if (!inside(c, nullptr) && c.norm() < best) best = c.norm(), out.point = f.toNed(c.x(), c.y());
+  for (const auto& c : cand) {
+    const double cost = c.norm() + (had ? (c - last).norm() : 0.0);
+    if (!inside(c, nullptr) && cost < best) best = cost, out.point = f.toNed(c.x(), c.y());
+  }
   return out;
 }
 

@@ -118,3 +118,15 @@ def test_the_mission_at_every_site_succeeds_as_at_home():
         assert m["outcome"] == "success", (name, m["reason"])
         for k in keys:
             assert m[k] == pytest.approx(home[k], abs=0.02), (name, k, m[k], home[k])
+
+
+@pytest.mark.parametrize("name", sorted(os.path.basename(p) for p in SCENARIOS if os.path.basename(p) not in SITES))
+def test_every_shipped_scenario_succeeds_rosfree(name):
+    """Every shipped scenario, as a user would first run it (the sites have their own test above): the ROS-free
+    mission ends as the scenario expects, the AUV recovered, no contact. two_obstacles.yaml touched a buoy in the
+    recovery (the hold moved off it flipped sides) and pyhajarvi_map.yaml left the AUV adrift until 2026-12-05."""
+    m = rosfree(name)
+    assert m["outcome"] == "success", (name, m["reason"])
+    assert m["recovered"] is True, m["reason"]
+    assert m["usv_auv_min_clearance_m"] >= 1.0, m
+    assert m["min_clearance_m"] is None or m["min_clearance_m"] > 0.0, m

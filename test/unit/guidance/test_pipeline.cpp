@@ -193,3 +193,24 @@ TEST(GuidancePipeline, PresetsAreTheThesisTables) {
   EXPECT_TRUE(GuidanceParams::preset("acolor").los.sphere);
   EXPECT_FALSE(GuidanceParams::preset("girona500").sbb_enabled);
 }
+
+TEST(SafeHoldPoint, AMovedHoldStaysOnItsSideWhenTheBoxTakesItIn) {
+  // A hold point on a buoy: four ways out, equally near. Once moved to one side, a jitter of the LiDAR's box that
+  // takes that side in moves it out on the same side, not across to the other (6.7 m here; 10 m in
+  // two_obstacles.yaml, where the flips put the hull on a buoy).
+  SbbParams p;
+  p.hold_clearance = 3.0;
+  const Eigen::Vector2d point(0, 0);
+  const SafeHold first = safeHoldPoint(point, 0.0, {buoy(0, 0)}, p);
+  ASSERT_TRUE(first.moved);
+  EXPECT_NEAR(first.point.norm(), 3.6, 1e-2);
+  const Eigen::Vector2d side = first.point;
+  SbbObstacle jittered = buoy(0, 0);
+  jittered.origin += 0.5 * side.normalized();  // the box now covers the side held
+  const SafeHold fresh = safeHoldPoint(point, 0.0, {jittered}, p);
+  const SafeHold kept = safeHoldPoint(point, 0.0, {jittered}, p, side);
+  ASSERT_TRUE(kept.moved);
+  EXPECT_NEAR((kept.point - side).norm(), 0.5, 1e-2);    // just out of the grown box, on the same side
+  EXPECT_GT((fresh.point - side).norm(), 6.0);            // without the hint: the nearest way out, across
+  EXPECT_NEAR(kept.point.norm(), 4.1, 1e-2);
+}
