@@ -296,13 +296,15 @@ SafeHold safeHoldPoint(const Eigen::Vector2d& point, double heading, const std::
   const double eps = 1e-3;
   const bool had = previous && previous->allFinite();
   const Eigen::Vector2d last = had ? f.toLeg(*previous) : Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector2d> from{Eigen::Vector2d::Zero()};
+  if (had) from.push_back(last);
   std::vector<Eigen::Vector2d> cand;
   for (const auto& r : rs) {
-    for (const Eigen::Vector2d& from : {Eigen::Vector2d::Zero().eval(), last}) {
-      cand.push_back({r.s_lo - eps, from.y()});
-      cand.push_back({r.s_hi + eps, from.y()});
-      cand.push_back({from.x(), r.e_lo - eps});
-      cand.push_back({from.x(), r.e_hi + eps});
+    for (const Eigen::Vector2d& o : from) {
+      cand.push_back({r.s_lo - eps, o.y()});
+      cand.push_back({r.s_hi + eps, o.y()});
+      cand.push_back({o.x(), r.e_lo - eps});
+      cand.push_back({o.x(), r.e_hi + eps});
     }
     for (double cs : {r.s_lo - eps, r.s_hi + eps})
       for (double ce : {r.e_lo - eps, r.e_hi + eps}) cand.push_back({cs, ce});
