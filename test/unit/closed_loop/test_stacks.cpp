@@ -237,8 +237,8 @@ TEST(RosFreeMission, NoTargetScenarioEndsWithTheAuvRecovered) {
 // `./scripts/bench clutter` runs 20). At the surface the Girona500 holds: the waves' mean drift on its 1.5 m hull is
 // a small body's (Havelock), not a wall's (as a full reflection it had exceeded its 420 N of backing thrust and it
 // ended 244 m off). With the hold's integral it sits on its point (0.17 m off, 2026-12-05 seed 1; its proportional
-// hold stood 1.2 m off), but the USV, in 1 m waves, wanders 15-30 m about its run-in (each move of the AUV's reported
-// position replans the way there) and never closes in: auv_adrift with the AUV held, and never on top of it.
+// hold stood 1.2 m off), but the USV, in 1 m waves, stays 15-30 m from the AUV about its run-in (its hold point
+// jumping as the way there is planned again) and never closes in: auv_adrift with the AUV held, never on top of it.
 TEST(RosFreeMission, NoTargetInTheModerateSeaFindsNoneAndTheAuvHolds) {
   std::ifstream in("config/scenarios/no_target.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
