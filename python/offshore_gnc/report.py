@@ -451,11 +451,11 @@ def _at(track, t):
 
 
 def station_keeping(usv_track, mission_status, guidance_status):
-    """docs/mission.md: (usv_wait_drift_m, usv_hold_p95_m). The wait: from the first STATION_KEEPING status until
-    the first TRANSIT, the largest distance from where it began. The hold: while the USV mission reports it on
-    station (on_station_since of its latest status) at the target (ARRIVED) or beside the AUV (RECOVERY, RECOVERED),
-    each guidance sample that holds a point, the distance of the true position from that point; its 95th
-    percentile."""
+    """docs/mission.md: (usv_wait_drift_m, usv_hold_p95_m, usv_recovery_hold_p95_m). The wait: from the first
+    STATION_KEEPING status until the first TRANSIT, the largest distance from where it began. The hold: while the USV
+    mission reports it on station (on_station_since of its latest status) at the target (ARRIVED), each guidance
+    sample that holds a point, the distance of the true position from that point; its 95th percentile. The same
+    beside the AUV (RECOVERY, RECOVERED: the run-in, then the recovery point)."""
     wait = [t for t, m in mission_status if m.phase == "STATION_KEEPING"]
     transit = next((t for t, m in mission_status if m.phase == "TRANSIT"), float("inf"))
     drift = float("nan")
@@ -464,7 +464,7 @@ def station_keeping(usv_track, mission_status, guidance_status):
         if during:
             drift = max(math.hypot(n - during[0][1], e - during[0][2]) for _, n, e, _ in during)
     status = [(_stamp(t, m), m) for t, m in mission_status]
-    errors = []
+    errors, recovery = [], []
     for t, m in guidance_status if usv_track else ():
         st = _phase_at(status, t)
         if st is None or st.phase not in ("ARRIVED", "RECOVERY", "RECOVERED") or not t >= st.on_station_since:
@@ -475,8 +475,9 @@ def station_keeping(usv_track, mission_status, guidance_status):
             continue
         if m.reference_mode == REFERENCE_HOLD:
             _, n, e, _ = _at(usv_track, t)
-            errors.append(math.hypot(n - m.reference_point.x, e - m.reference_point.y))
-    return drift, _percentile(errors, 0.95)
+            (errors if st.phase == "ARRIVED" else recovery).append(
+                math.hypot(n - m.reference_point.x, e - m.reference_point.y))
+    return drift, _percentile(errors, 0.95), _percentile(recovery, 0.95)
 
 
 def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=None, planned_faults=()):
@@ -504,16 +505,30 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     fixes_ok = [m for m in fixes if m.quality == QUALITY_OK]
     fix_scores, usbl = usbl_verdicts(fixes, [m for _, m in a["/auv/navigation/refused_fixes"]],
                                      [(_stamp(t, m),) + p[1:] for (t, m), p in zip(a["/auv/ground_truth/odom"], auv_track)])
-    usv_xte = [(t, m.cross_track_error) for t, m in u["/usv/guidance/status"] if m.mode == MODE_FOLLOW_PATH]
+    # The USV's path following is its transit to the target (Table 5.1's figure); the recovery's short legs round the
+    # AUV, entered and cut by its 16 m circle of acceptance, are reported apart. Each guidance sample in the phase of
+    # the USV mission's latest status.
+    usv_phases = [(_stamp(t, m), m) for t, m in u["/usv/mission/status"]]
+    usv_transit, usv_recovery = [], []
+    for t, m in u["/usv/guidance/status"]:
+        st = _phase_at(usv_phases, t)
+        if st is not None and st.phase == "TRANSIT":
+            usv_transit.append((t, m))
+        elif st is not None and st.phase == "RECOVERY":
+            usv_recovery.append((t, m))
+    usv_xte = [(t, m.cross_track_error) for t, m in usv_transit if m.mode == MODE_FOLLOW_PATH]
+    usv_recovery_xte = [(t, m.cross_track_error) for t, m in usv_recovery if m.mode == MODE_FOLLOW_PATH]
     # The AUV's search (until it reports it over): its tracking and navigation figures; after it the AUV holds, comes
     # up and holds at the surface (the hold paths' lead-ins are no search legs), reported apart.
     auv_end_t = next((t for t, m in a["/auv/mission/status"] if m.phase not in SEARCHING and m.phase), float("inf"))
     auv_searching = [(t, m) for t, m in a["/auv/guidance/status"] if t <= auv_end_t]
     auv_xte = [(t, m.cross_track_error) for t, m in auv_searching if m.mode == MODE_FOLLOW_PATH]
-    wait_drift, hold_p95 = station_keeping(usv_track, u["/usv/mission/status"], u["/usv/guidance/status"])
-    us = tracking_metrics(usv_bag or "", "/usv/guidance/status")
+    wait_drift, hold_p95, recovery_hold_p95 = station_keeping(usv_track, u["/usv/mission/status"],
+                                                              u["/usv/guidance/status"])
     au_split = split_tracking(auv_searching, auv_track)
-    us_true = split_tracking(u["/usv/guidance/status"], usv_track)["all_truth"]
+    us_split = split_tracking(usv_transit, usv_track)
+    us, us_true = us_split["all"], us_split["all_truth"]
+    us_recovery = split_tracking(usv_recovery, usv_track)["all_truth"]
     au, au_approach = au_split["tracking_truth"], au_split["approach_truth"]
     nav_during = [e for t, e in nav_err if t <= auv_end_t]
     nav_after = [e for t, e in nav_err if t > auv_end_t]
@@ -578,10 +593,12 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         "success": verdict == "success",
         "outcome": verdict,  # closed_loop/outcome.h's class; the sentence in reason
         "reason": (outcome or {}).get("reason", last_usv.detail if last_usv else "no USV status recorded"),
-        # cross-track errors while following a path: _est on the vehicle's navigation estimate (guidance's own, as
-        # the thesis' Table 5.1 was measured on the USV's GPS), _true the true position's distance from the leg
+        # cross-track errors while following a path (the USV's transit, the AUV's search): _est on the vehicle's
+        # navigation estimate (guidance's own, as the thesis' Table 5.1 was measured on the USV's GPS), _true the true
+        # position's distance from the leg
         "usv_xte_est_rmse_m": us["rmse"], "usv_xte_est_sd_m": us["sd"], "usv_xte_est_mae_m": us["mae"],
         "usv_xte_est_samples": us["n"], "usv_xte_true_rmse_m": us_true["rmse"], "usv_xte_true_samples": us_true["n"],
+        "usv_recovery_xte_true_rmse_m": us_recovery["rmse"],  # the USV on the recovery's legs
         "auv_xte_true_rmse_m": au["rmse"], "auv_xte_true_sd_m": au["sd"], "auv_xte_true_mae_m": au["mae"],
         "auv_xte_true_samples": au["n"],
         # the AUV's figures above count from the first waypoint reached (as Table 4.4); its approach apart
@@ -612,7 +629,7 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
         # where the USV really held at the target (before the recovery took it on), against the true target (the
         # stand-off is part of this distance); off_station when farther than the stand-off plus the tolerance
         "usv_final_distance_to_target_m": final_distance,
-        "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95,
+        "usv_wait_drift_m": wait_drift, "usv_hold_p95_m": hold_p95, "usv_recovery_hold_p95_m": recovery_hold_p95,
         # after the find (docs/mission.md, "Recovery"): the AUV keeping the spot, coming up, and the USV beside it
         "recovered": recovered, "auv_hold_excursion_m": rec["auv_hold_excursion_m"],
         "auv_ascent_drift_m": rec["auv_ascent_drift_m"], "auv_surface_excursion_m": rec["auv_surface_excursion_m"],
@@ -642,13 +659,15 @@ def build(usv_bag, auv_bag, scenario, out, wall_time_s=float("nan"), outcome=Non
     with open(os.path.join(out, "metrics.json"), "w") as f:
         json.dump(clean, f, indent=2)
 
-    _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_est_track, fixes_ok)
+    _plots(out, sc, usv_track, auv_track, u, a, detected, (usv_xte, usv_recovery_xte), auv_xte, auv_est_track,
+           fixes_ok)
     _navigation_plot(out, nav_err, fix_scores, auv_end_t)
     _summary(out, clean, scenario)
     return clean
 
 
 def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_est_track=(), fixes_ok=()):
+    """map.png and cross_track.png; usv_xte: (the transit's, the recovery's) [(t, e)]."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -719,10 +738,17 @@ def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_
     plt.close(fig)
 
     fig, axs = plt.subplots(2, 1, figsize=(9, 6), sharex=False)
-    for axx, xte, name in ((axs[0], usv_xte, "USV"), (axs[1], auv_xte, "AUV")):
+    # time on path: the transit, then the recovery's legs (grey) after it
+    usv_transit, usv_recovery = usv_xte
+    for axx, xte, rest, name in ((axs[0], usv_transit, usv_recovery, "USV"), (axs[1], auv_xte, [], "AUV")):
         if xte:
             t0 = xte[0][0]
-            axx.plot([t - t0 for t, _ in xte], [e for _, e in xte], lw=1)
+            axx.plot([t - t0 for t, _ in xte], [e for _, e in xte], lw=1, label="transit" if rest else None)
+        if rest:
+            t0 = rest[0][0] - ((xte[-1][0] - xte[0][0]) if xte else 0.0)
+            axx.plot([t - t0 for t, _ in rest], [e for _, e in rest], lw=1, color="0.6",
+                     label="the recovery's legs round the AUV (reported apart)")
+            axx.legend(loc="lower left", fontsize=8)
         axx.axhline(0, color="k", lw=0.5)
         axx.set_ylabel("%s e(t) [m]" % name)
         axx.grid(True, alpha=0.3)
@@ -812,12 +838,14 @@ def _summary(out, m, scenario):
         "",
         "**%s** (%s) - %s" % ("SUCCESS" if m["success"] else "FAILED", m["outcome"], m["reason"]), "",
         "| figure | this run | thesis field test |", "| --- | --- | --- |",
-        "| USV cross-track RMSE, on its GPS estimate (guidance's own) | %s | %.4f m (Table 5.1) |" % (
+        "| USV cross-track RMSE in the transit, on its GPS estimate (guidance's own) | %s | %.4f m (Table 5.1) |" % (
             _fmt(m["usv_xte_est_rmse_m"], " m"), th["usv_xte_est_rmse_m"]),
         "| USV cross-track SD, on its estimate | %s | %.4f m |" % (_fmt(m["usv_xte_est_sd_m"], " m"), th["usv_xte_est_sd_m"]),
         "| USV cross-track MAE, on its estimate | %s | %.4f m |" % (
             _fmt(m["usv_xte_est_mae_m"], " m"), th["usv_xte_est_mae_m"]),
-        "| USV cross-track RMSE, true position | %s | |" % _fmt(m["usv_xte_true_rmse_m"], " m"),
+        "| USV cross-track RMSE in the transit, true position | %s | |" % _fmt(m["usv_xte_true_rmse_m"], " m"),
+        "| USV cross-track RMSE, true position, on the recovery's legs round the AUV | %s | |" % _fmt(
+            m.get("usv_recovery_xte_true_rmse_m"), " m"),
         "| AUV cross-track RMSE, true position, from the first waypoint | %s | %.2f m (Table 4.4, Girona500) |" % (
             _fmt(m["auv_xte_true_rmse_m"], " m"), th["auv_xte_true_rmse_m"]),
         "| AUV cross-track RMSE, true position, on its approach (leg 1) | %s | |" % _fmt(
@@ -840,8 +868,10 @@ def _summary(out, m, scenario):
         "| USV distance to the true target where it held there (its last ARRIVED) | %s | |" % _fmt(
             m["usv_final_distance_to_target_m"], " m"),
         "| USV drift while waiting for the target | %s | |" % _fmt(m["usv_wait_drift_m"], " m"),
-        "| USV hold on station (target, recovery), 95th percentile, from on station (within station_radius) | %s | |"
+        "| USV hold on station at the target, 95th percentile, from on station (within station_radius) | %s | |"
         % _fmt(m["usv_hold_p95_m"], " m"),
+        "| USV hold on station in the recovery (run-in, beside the AUV), 95th percentile | %s | |"
+        % _fmt(m.get("usv_recovery_hold_p95_m"), " m"),
         "| AUV hold at the find, largest excursion | %s | |" % _fmt(m["auv_hold_excursion_m"], " m"),
         "| AUV drift while ascending | %s | |" % _fmt(m["auv_ascent_drift_m"], " m"),
         "| AUV at the surface, largest distance from its point | %s | |" % _fmt(m["auv_surface_excursion_m"], " m"),

@@ -22,21 +22,28 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kUsvPoseBytes = (64 + 8 + 123) + (64 + 12 + 55), kTargetBytes = 64 + 7 + 200;
 constexpr std::size_t kStatusBytes = 64 + 20 + 150;
 
+// As report.split_tracking: the true position's distance from the leg guidance followed, the line through the
+// estimate's projection on it along the leg's angle (e positive to starboard; NaN off a leg). Not
+// plannedPath()[k-1..k]: LOS merges waypoints closer than min_leg_length, so its leg index need not count the planned
+// path's waypoints.
+double trueCrossTrack(const guidance::GuidanceOutput& g, const VehicleState& truth) {
+  double e = kNaN;
+  if (g.reference.mode == ReferenceMode::kFollow)
+    guidance::legGeometry(g.reference.point.head<2>(),
+                          g.reference.point.head<2>() + Eigen::Vector2d(std::cos(g.reference.path_angle),
+                                                                        std::sin(g.reference.path_angle)),
+                          truth.position.head<2>(), &e, nullptr);
+  return e;
+}
+
+// g: guidance's step (nullptr: none); its cross-track counts only while tracking (the USV's transit, the AUV's search).
 void record(VehicleRecord& r, const VehicleState& truth, long step, const guidance::GuidanceOutput* g,
-            const guidance::GuidancePipeline& pipeline) {
+            const guidance::GuidancePipeline& pipeline, bool tracking = true) {
   if (step % 5 == 0) r.truth.emplace_back(truth.t, truth.position.x(), truth.position.y(), truth.position.z());
   if (!g) return;
-  if (g->los.mode == guidance::Mode::kFollowPath) {
+  if (tracking && g->los.mode == guidance::Mode::kFollowPath) {
     r.xte.emplace_back(truth.t, g->los.cross_track_error);
-    // As report.split_tracking: the true position's distance from the leg guidance followed, the line through the
-    // estimate's projection on it along the leg's angle (e positive to starboard). Not plannedPath()[k-1..k]: LOS
-    // merges waypoints closer than min_leg_length, so its leg index need not count the planned path's waypoints.
-    double e_truth = kNaN;
-    if (g->reference.mode == ReferenceMode::kFollow)
-      guidance::legGeometry(g->reference.point.head<2>(),
-                            g->reference.point.head<2>() + Eigen::Vector2d(std::cos(g->reference.path_angle),
-                                                                           std::sin(g->reference.path_angle)),
-                            truth.position.head<2>(), &e_truth, nullptr);
+    const double e_truth = trueCrossTrack(*g, truth);
     r.xte_truth.emplace_back(truth.t, e_truth);
     if (g->los.active_leg >= 2) {
       r.xte_tracking.emplace_back(truth.t, g->los.cross_track_error);
@@ -168,7 +175,8 @@ MissionResult runMission(const MissionConfig& cfg) {
   bool target_delivered = false, held = false;
   double ascent_depth = kNaN;  // the AUV's true depth when its ascent began
   res.auv_hold_point = Eigen::Vector3d::Constant(kNaN);
-  std::vector<double> hold_error, nav_error;
+  std::vector<double> hold_error, recovery_hold_error, nav_error;  // the USV's at the target, and beside the AUV
+  std::vector<Eigen::Vector2d> recovery_xte;                       // (t, e true) on the recovery's legs
   res.usv_wait_drift_m = kNaN;
   res.reason = "simulated time limit reached";
   res.min_clearance_m = res.usv_auv_min_clearance_m = std::numeric_limits<double>::infinity();
@@ -240,7 +248,13 @@ MissionResult runMission(const MissionConfig& cfg) {
     }
     notePhase(res.usv, t, usv.mission().phase());
     notePhase(res.auv, t, auv.mission().phase());
-    record(res.usv, usv.truth(), step, usv_alive ? usv.guidanceStep() : nullptr, usv.guidance());
+    // the USV's path following is its transit to the target (Table 5.1's figure); the recovery's short legs round the
+    // AUV, entered and cut by the 16 m circle of acceptance, are reported apart
+    const auto usv_phase = usv.mission().phase();
+    const guidance::GuidanceOutput* usv_g = usv_alive ? usv.guidanceStep() : nullptr;
+    record(res.usv, usv.truth(), step, usv_g, usv.guidance(), usv_phase == mission::UsvPhase::Transit);
+    if (usv_g && usv_phase == mission::UsvPhase::Recovery && usv_g->los.mode == guidance::Mode::kFollowPath)
+      recovery_xte.emplace_back(t, trueCrossTrack(*usv_g, usv.truth()));
     const VehicleState& ax = auv.truth();
     if (step % 5 == 0) {  // the hull against every true shape, a fault's obstacle included, and the AUV, at 20 Hz
       const auto& fault = usv.simulation().faultObstacle();
@@ -306,7 +320,8 @@ MissionResult runMission(const MissionConfig& cfg) {
         t >= um.onStationSince()) {
       const auto* g = usv.guidanceStep();
       if (g && g->reference.mode == ReferenceMode::kHold)
-        hold_error.push_back((usv_ne - g->reference.point.head<2>()).norm());
+        (ph == mission::UsvPhase::Arrived ? hold_error : recovery_hold_error)
+            .push_back((usv_ne - g->reference.point.head<2>()).norm());
     }
     if (um.phase() == mission::UsvPhase::Recovered) {
       res.recovered = true;
@@ -332,6 +347,8 @@ MissionResult runMission(const MissionConfig& cfg) {
   res.usv_safety = usv.supervisor().transitions();
   res.auv_safety = auv.supervisor().transitions();
   res.usv_hold_p95_m = percentile(hold_error, 0.95);
+  res.usv_recovery_hold_p95_m = percentile(recovery_hold_error, 0.95);
+  res.usv_recovery_xte_truth = metricsOf(recovery_xte);
   const guidance::TrackingMetrics nav = guidance::computeMetrics(nav_error);
   res.auv_nav_rmse_m = nav.rmse;
   res.auv_nav_max_m = nav_error.empty() ? kNaN : *std::max_element(nav_error.begin(), nav_error.end());

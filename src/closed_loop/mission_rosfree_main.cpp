@@ -161,6 +161,7 @@ int main(int argc, char** argv) {
         "\"auv_approach_xte_true_rmse_m\": %s, \"auv_xte_est_rmse_m\": %s, "
         "\"target_error_m\": %s, \"detection_time_s\": %s, \"min_clearance_m\": %s, "
         "\"usv_final_distance_to_target_m\": %s, \"usv_wait_drift_m\": %s, \"usv_hold_p95_m\": %s, "
+        "\"usv_recovery_hold_p95_m\": %s, \"usv_recovery_xte_true_rmse_m\": %s, "
         "\"usv_final_phase\": %s, \"auv_final_phase\": %s, \"usv_safety\": %s, \"auv_safety\": %s, "
         "\"auv_nav_source\": %s, \"auv_nav_rmse_m\": %s, \"auv_nav_max_m\": %s, \"usbl_fixes_received\": %zu, "
         "\"usbl_fixes_rejected\": %zu, %s, \"relay_lost\": %zu, \"recovered\": %s, \"auv_hold_excursion_m\": %s, "
@@ -174,7 +175,8 @@ int main(int argc, char** argv) {
         num(r.auv.tracking_truth.mae).c_str(), r.auv.tracking_truth.samples, num(r.auv.approach_truth.rmse).c_str(),
         num(r.auv.tracking.rmse).c_str(), num(r.target_error_m).c_str(), num(r.detection_time_s).c_str(),
         num(r.min_clearance_m).c_str(), num(r.usv_final_distance_to_target_m).c_str(),
-        num(r.usv_wait_drift_m).c_str(), num(r.usv_hold_p95_m).c_str(), str(r.usv.final_phase).c_str(), str(r.auv.final_phase).c_str(),
+        num(r.usv_wait_drift_m).c_str(), num(r.usv_hold_p95_m).c_str(), num(r.usv_recovery_hold_p95_m).c_str(),
+        num(r.usv_recovery_xte_truth.rmse).c_str(), str(r.usv.final_phase).c_str(), str(r.auv.final_phase).c_str(),
         activations(r.usv_safety).c_str(), activations(r.auv_safety).c_str(), str(navigation).c_str(),
         num(r.auv_nav_rmse_m).c_str(), num(r.auv_nav_max_m).c_str(), r.usbl.received, r.usbl.rejected,
         usblScores(r.usbl).c_str(), r.relay_lost, r.recovered ? "true" : "false", num(r.auv_hold_excursion_m).c_str(),

@@ -45,7 +45,12 @@ def test_report_from_bags(tmp_path):
             b.write("/usv/ground_truth/odom", o, t)
             g = GuidanceStatus()
             g.mode = GuidanceStatus.MODE_FOLLOW_PATH
-            g.cross_track_error = 0.5 if i % 2 else -0.5
+            # the transit (to 142 s), +-0.5 m; then still on a leg, arrived (9 m) and in the recovery (3 m on the
+            # estimate, the truth 0.5 m off a leg due north through east 0): neither counts as the transit's
+            g.cross_track_error = (0.5 if i % 2 else -0.5) if i < 42 else 9.0 if i < 46 else 3.0
+            if i >= 46:
+                g.reference_mode = GuidanceStatus.REFERENCE_FOLLOW
+                g.reference_point.x, g.path_angle = float(i), 0.0
             b.write("/usv/guidance/status", g, t)
         p = Path()
         p.header.frame_id = "map_ned"
@@ -57,8 +62,8 @@ def test_report_from_bags(tmp_path):
         tg = Target()
         tg.origin.x, tg.origin.y, tg.origin.z = 45.0, 4.0, 5.0
         b.write("/target", tg, rospy.Time(120))
-        s = MissionStatus(vehicle="usv", phase="ARRIVED", detail="arrived")
-        b.write("/usv/mission/status", s, rospy.Time(148))
+        for phase, t in (("TRANSIT", 100), ("ARRIVED", 142), ("RECOVERY", 146)):
+            b.write("/usv/mission/status", MissionStatus(vehicle="usv", phase=phase, detail=phase), rospy.Time(t))
         s = MissionStatus(vehicle="usv", phase="RECOVERED", finished=True, success=True, detail="recovered")
         b.write("/usv/mission/status", s, rospy.Time(149))
     sc = tmp_path / "sc.yaml"
@@ -69,14 +74,15 @@ def test_report_from_bags(tmp_path):
     out = tmp_path / "report"
     m = report.build(usv_bag, None, str(sc), str(out), wall_time_s=12.0)
     assert m["success"] is True and m["recovered"] is True, m["outcome"]  # success needs the AUV recovered (RECOVERED)
-    assert m["usv_xte_est_rmse_m"] == pytest.approx(0.5)
+    assert m["usv_xte_est_rmse_m"] == pytest.approx(0.5) and m["usv_xte_est_samples"] == 42  # the transit's
     assert m["usv_xte_est_mae_m"] == pytest.approx(0.5)
+    assert m["usv_recovery_xte_true_rmse_m"] == pytest.approx(0.5)
     # from the hull (config/usv.yaml's outline, 1.3 m to each side of the centreline), not the reference point
     assert m["min_clearance_m"] == pytest.approx(2.5 - 0.5 - 1.3, abs=1e-3)
     assert m["outcome"] == "success"
     assert m["target_error_m"] == pytest.approx(1.0)
-    # where it held at the target: its last ARRIVED status (148 s), not where the recovery took it
-    assert m["usv_final_distance_to_target_m"] == pytest.approx(math.hypot(45.0 - 48.0, 3.0 - 0.5))
+    # where it held at the target: its last ARRIVED status (142 s), not where the recovery took it
+    assert m["usv_final_distance_to_target_m"] == pytest.approx(math.hypot(45.0 - 42.0, 3.0 - 0.5))
     assert m["auv_xte_true_rmse_m"] is None  # no AUV bag: reported as unknown, not as zero
     assert m["sim_time_s"] == pytest.approx(49.0)
     for f in ("metrics.json", "summary.md", "map.png", "cross_track.png"):

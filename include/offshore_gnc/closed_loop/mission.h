@@ -48,7 +48,8 @@ MissionConfig loadMission(const std::string& config_dir, const std::string& scen
 
 struct VehicleRecord {
   std::vector<Eigen::Vector4d> truth;                 // (t, north, east, down) at 20 Hz, as the bags record it
-  std::vector<Eigen::Vector2d> xte;                   // (t, e) of guidance's samples in path following
+  std::vector<Eigen::Vector2d> xte;                   // (t, e) of guidance's samples in path following while tracking
+                                                      // (the USV's transit, the AUV's search)
   std::vector<Eigen::Vector2d> xte_truth;             // the same samples on the truth (distance from the active leg)
   // The same samples split as the report splits an AUV's (thesis Table 4.4 leaves the approach out): from the
   // first waypoint reached (active leg 2 on) on guidance's estimate and on the truth (the true position's
@@ -90,8 +91,11 @@ struct MissionResult {
   // left for the recovery), else where it ended (NaN without a target)
   double usv_final_distance_to_target_m = 0.0;
   // Station keeping (docs/mission.md): the largest distance from where the USV started waiting until the target
-  // came, and the 95th percentile distance from its hold point over the hold at the target (NaN without one).
-  double usv_wait_drift_m = 0.0, usv_hold_p95_m = 0.0;
+  // came, and the 95th percentile distance from its hold point over the hold at the target (NaN without one); the
+  // same over its holds in the recovery (the run-in, beside the AUV).
+  double usv_wait_drift_m = 0.0, usv_hold_p95_m = 0.0, usv_recovery_hold_p95_m = 0.0;
+  // The USV's true cross-track on the recovery's legs (usv.metrics* count its transit only).
+  guidance::TrackingMetrics usv_recovery_xte_truth;
   // The AUV's navigation during its mission (until it reports finished): its estimate against its truth,
   // horizontal, at the estimate's rate (the report's auv_nav_rmse_m); the USBL fixes (none with navigation ins).
   double auv_nav_rmse_m = 0.0, auv_nav_max_m = 0.0;

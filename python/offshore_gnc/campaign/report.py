@@ -13,9 +13,10 @@ from offshore_gnc.campaign import generate, runs
 
 # (key in mission_rosfree's JSON, label, the sample count that must be > 0 for the figure to exist, higher is worse)
 METRICS = (
-    ("usv_xte_true_rmse_m", "USV cross-track RMSE [m]", "usv_xte_est_samples", True),
+    ("usv_xte_true_rmse_m", "USV cross-track RMSE, transit [m]", "usv_xte_est_samples", True),
     ("auv_xte_true_rmse_m", "AUV cross-track RMSE [m]", "auv_xte_true_samples", True),
-    ("usv_hold_p95_m", "USV hold, 95th percentile [m]", None, True),
+    ("usv_hold_p95_m", "USV hold at the target, 95th percentile [m]", None, True),
+    ("usv_recovery_hold_p95_m", "USV hold in the recovery, 95th percentile [m]", None, True),
     ("usv_wait_drift_m", "USV drift while waiting [m]", None, True),
     ("auv_nav_rmse_m", "AUV navigation error RMSE [m]", None, True),
     ("target_error_m", "target error [m]", None, True),
