@@ -167,6 +167,7 @@ void UsvStack::pathToGuidance() {
     std::vector<Eigen::Vector3d> path;
     for (const auto& w : *p) path.emplace_back(w.x(), w.y(), 0.0);
     guidance_.setPath(path);
+    guidance_.setKnownObstacles(mission_.keepClear());
   }
 }
 

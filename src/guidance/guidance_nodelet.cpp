@@ -53,7 +53,10 @@ class GuidanceNodelet : public nodelet::Nodelet {
     markers_.advertise(nh, "markers", "sbb", true);
     path_sub_ = nh.subscribe("guidance/path", 1, &GuidanceNodelet::onPath, this);
     odom_sub_ = nh.subscribe("odom", 10, &GuidanceNodelet::onOdom, this);
-    if (gp.sbb_enabled) obstacles_sub_ = nh.subscribe("obstacles", 1, &GuidanceNodelet::onObstacles, this);
+    if (gp.sbb_enabled) {
+      obstacles_sub_ = nh.subscribe("obstacles", 1, &GuidanceNodelet::onObstacles, this);
+      keep_clear_sub_ = nh.subscribe("mission/keep_clear", 1, &GuidanceNodelet::onKeepClear, this);  // latched
+    }
 
     reconfigure_ = std::make_unique<dynamic_reconfigure::Server<GuidanceConfig>>(reconf_mutex_, pnh);
     reconfigure_->updateConfig(ros_util::toReconfigure<GuidanceConfig>(guidance::GuidanceParams::table(), gp));
@@ -102,9 +105,9 @@ class GuidanceNodelet : public nodelet::Nodelet {
     pipeline_->setState(ros_util::stateFromOdom(*m), ros::Time::now().toSec());
   }
 
-  void onObstacles(const TargetArray::ConstPtr& m) {
+  static std::vector<guidance::SbbObstacle> obstaclesOf(const TargetArray& m) {
     std::vector<guidance::SbbObstacle> obstacles;
-    for (const auto& t : m->targets) {
+    for (const auto& t : m.targets) {
       guidance::SbbObstacle o;
       o.id = t.id;
       o.origin = Eigen::Vector2d(t.origin.x, t.origin.y);
@@ -112,8 +115,18 @@ class GuidanceNodelet : public nodelet::Nodelet {
       o.width = t.width;
       obstacles.push_back(o);
     }
+    return obstacles;
+  }
+
+  void onObstacles(const TargetArray::ConstPtr& m) {
     std::lock_guard<std::mutex> l(mutex_);
-    pipeline_->setObstacles(obstacles, ros::Time::now().toSec());
+    pipeline_->setObstacles(obstaclesOf(*m), ros::Time::now().toSec());
+  }
+
+  // the mission's (the surfaced AUV it recovers): kept until the next message
+  void onKeepClear(const TargetArray::ConstPtr& m) {
+    std::lock_guard<std::mutex> l(mutex_);
+    pipeline_->setKnownObstacles(obstaclesOf(*m));
   }
 
   void onTimer(const ros::TimerEvent& ev) {
@@ -197,7 +210,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::Publisher status_pub_, boxes_pub_, planned_pub_;
   ros_util::NamespaceMarkers markers_;
-  ros::Subscriber path_sub_, odom_sub_, obstacles_sub_;
+  ros::Subscriber path_sub_, odom_sub_, obstacles_sub_, keep_clear_sub_;
   ros::Timer timer_;
 };
 

@@ -109,17 +109,38 @@ void GuidancePipeline::rejectPath(const std::string& why) {
   los_.setPath({Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN())});  // -> hold fault
 }
 
-void GuidancePipeline::setObstacles(const std::vector<SbbObstacle>& obstacles, double t) {
-  obstacles_.clear();
+namespace {
+// The finite ones; the others counted as bad_obstacles.
+std::vector<SbbObstacle> finiteObstacles(const std::vector<SbbObstacle>& obstacles, Counters& counters) {
+  std::vector<SbbObstacle> out;
   for (const auto& o : obstacles) {
     if (!o.origin.allFinite() || !std::isfinite(o.length) || !std::isfinite(o.width)) {
-      counters_.increment("bad_obstacles");
+      counters.increment("bad_obstacles");
       continue;
     }
-    obstacles_.push_back(o);
+    out.push_back(o);
   }
+  return out;
+}
+}  // namespace
+
+void GuidancePipeline::setObstacles(const std::vector<SbbObstacle>& obstacles, double t) {
+  obstacles_ = finiteObstacles(obstacles, counters_);
   obstacles_time_ = t;
   replan_ = true;
+}
+
+void GuidancePipeline::setKnownObstacles(const std::vector<SbbObstacle>& obstacles) {
+  known_ = finiteObstacles(obstacles, counters_);
+  replan_ = true;
+}
+
+std::vector<SbbObstacle> GuidancePipeline::activeObstacles(double t) const {
+  std::vector<SbbObstacle> all;
+  if (!p_.sbb_enabled) return all;
+  if (t - obstacles_time_ <= p_.obstacle_timeout) all = obstacles_;
+  all.insert(all.end(), known_.begin(), known_.end());
+  return all;
 }
 
 void GuidancePipeline::setState(const VehicleState& s, double t) {
@@ -129,17 +150,17 @@ void GuidancePipeline::setState(const VehicleState& s, double t) {
 }
 
 void GuidancePipeline::replan(const VehicleState& s, double t) {
-  if (!p_.sbb_enabled || t - obstacles_time_ > p_.obstacle_timeout) obstacles_.clear();
+  const std::vector<SbbObstacle> obstacles = activeObstacles(t);
   SbbPlan plan;
   double length = 0.0;
   for (std::size_t i = 1; i < base_path_.size(); ++i) length += (base_path_[i] - base_path_[i - 1]).head<2>().norm();
   // A path shorter than the corridor is a hold (the mission's lead-in to its station): no detour is planned round
   // it (the shoreline's boxes turned the hold into a detour and back every scan); the hold point keeps clear.
-  if (obstacles_.empty() || base_path_.size() < 2 || length < p_.sbb.corridor) {
+  if (obstacles.empty() || base_path_.size() < 2 || length < p_.sbb.corridor) {
     plan.path = base_path_;
     plan.status = "path clear";
   } else {
-    plan = planSbb(base_path_, s.position.head<2>(), obstacles_, p_.sbb, plan_.boxes);
+    plan = planSbb(base_path_, s.position.head<2>(), obstacles, p_.sbb, plan_.boxes);
     if (plan.blocked) counters_.increment("blocked_plans");
   }
   // Re-set the LOS path only when it really changed (slowly moving obstacles), resuming on the nearest leg.
@@ -181,12 +202,13 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
 }
 
 void GuidancePipeline::keepHoldClear(double t, GuidanceOutput& out) {
-  if (!p_.sbb_enabled || t - obstacles_time_ > p_.obstacle_timeout) return;
+  const std::vector<SbbObstacle> obstacles = activeObstacles(t);
+  if (obstacles.empty()) return;
   const Eigen::Vector2d asked = out.reference.point.head<2>();
   // Another hold point: choose afresh. One a little off the last (a recovery's point follows the AUV's reported
   // position) keeps the last move as a hint, so the side it chose is kept.
   if ((refused_hold_ - asked).norm() > p_.sbb.hold_clearance) moved_hold_.reset();
-  const SafeHold h = safeHoldPoint(asked, out.reference.heading, obstacles_, p_.sbb, moved_hold_, hull_);
+  const SafeHold h = safeHoldPoint(asked, out.reference.heading, obstacles, p_.sbb, moved_hold_, hull_);
   if (!h.moved) return;
   if (!moved_hold_) counters_.increment("hold_point_in_box");
   refused_hold_ = asked;

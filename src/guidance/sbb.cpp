@@ -165,6 +165,21 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
         });
         if (same && b.cuts_path && (b.side == SbbSide::kPort || b.side == SbbSide::kStarboard)) first = b.side;
       }
+      // A box that reaches back past the leg's start (the vehicle already alongside it) is entered by a run abeam
+      // to its first corner: never one through an obstacle itself (a surfaced AUV in a box merged with a shore's:
+      // the nearer side lay beyond the AUV, and the run there touched it). That side goes last.
+      auto through = [&](SbbSide side) {
+        if (r.s_lo > 0.0) return false;
+        const double e_to = side == SbbSide::kPort ? port : stbd;
+        for (const auto& o : obs) {
+          const Eigen::Vector2d q = f.toLeg(o.origin);
+          const double h = std::max(std::abs(o.length), std::abs(o.width)) / 2.0 + p.corridor;
+          if (std::abs(q.x()) < h && q.y() - h < std::max(0.0, e_to) && q.y() + h > std::min(0.0, e_to)) return true;
+        }
+        return false;
+      };
+      const SbbSide other = first == SbbSide::kPort ? SbbSide::kStarboard : SbbSide::kPort;
+      if (through(first) && !through(other)) first = other;
       SbbSide chosen = SbbSide::kBlocked;
       for (SbbSide side : {first, first == SbbSide::kPort ? SbbSide::kStarboard : SbbSide::kPort}) {
         const double e = side == SbbSide::kPort ? port : stbd;

@@ -10,6 +10,7 @@
 #include <offshore_gnc/JoystickCommand.h>
 #include <offshore_gnc/LinkStatus.h>
 #include <offshore_gnc/Target.h>
+#include <offshore_gnc/TargetArray.h>
 #include <pluginlib/class_list_macros.hpp>
 
 #include <memory>
@@ -48,6 +49,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
       throw;
     }
     path_pub_ = nh.advertise<nav_msgs::Path>("guidance/path", 1, true);
+    keep_clear_pub_ = nh.advertise<TargetArray>("mission/keep_clear", 1, true);
     status_pub_ = nh.advertise<MissionStatus>("mission/status", 10, true);
     markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("mission/markers", 1, true);
     target_sub_ = nh.subscribe("/target", 10, &UsvMissionNodelet::onTarget, this);
@@ -76,6 +78,22 @@ class UsvMissionNodelet : public nodelet::Nodelet {
 
   void publishPath() {
     if (auto path = mission_->takePath()) {
+      // what guidance must plan round besides its LiDAR's (the surfaced AUV), current before the path arrives
+      TargetArray keep;
+      keep.header.stamp = ros::Time::now();
+      keep.header.frame_id = "map_ned";
+      for (const auto& o : mission_->keepClear()) {
+        Target t;
+        t.header = keep.header;
+        t.id = o.id;
+        t.source = Target::SOURCE_MISSION;
+        t.origin.x = t.centroid.x = t.nearest.x = o.origin.x();
+        t.origin.y = t.centroid.y = t.nearest.y = o.origin.y();
+        t.length = o.length;
+        t.width = o.width;
+        keep.targets.push_back(t);
+      }
+      keep_clear_pub_.publish(keep);
       std::vector<Eigen::Vector3d> pts;
       for (const auto& w : *path) pts.emplace_back(w.x(), w.y(), 0.0);
       path_pub_.publish(mission_ros::toPath(pts, ros::Time::now()));
@@ -160,7 +178,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
   }
 
   std::unique_ptr<mission::UsvMission> mission_;
-  ros::Publisher path_pub_, status_pub_, markers_pub_;
+  ros::Publisher path_pub_, keep_clear_pub_, status_pub_, markers_pub_;
   ros::Subscriber target_sub_, odom_sub_, guidance_sub_, manual_sub_, link_sub_, auv_sub_;
   ros::Timer timer_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;

@@ -54,6 +54,10 @@ class GuidancePipeline {
   void rejectPath(const std::string& why);
   // Obstacles seen at time t (NED). Non-finite geometry is dropped and counted.
   void setObstacles(const std::vector<SbbObstacle>& obstacles, double t);
+  // Obstacles the mission knows of that the LiDAR may not see (the surfaced AUV the USV recovers: the simulated
+  // LiDAR has no AUV, and a real one sees a low hull poorly), planned round and kept clear of like the seen ones
+  // but kept until the next call (no obstacle_timeout). Empty: none. Non-finite geometry is dropped and counted.
+  void setKnownObstacles(const std::vector<SbbObstacle>& obstacles);
   // The hull's reach about the reference point: a hold point keeps the hull, not the point, clear (none: the point).
   void setHullReach(const HullReach& hull) { hull_ = hull; }
   // Navigation state at time t.
@@ -72,12 +76,14 @@ class GuidancePipeline {
   // A hold point too close to an obstacle (sbb/hold_clearance) is refused: the nearest clear point is held instead,
   // and the status says so (counter hold_point_in_box).
   void keepHoldClear(double t, GuidanceOutput& out);
+  // What is planned round at time t: the seen obstacles while fresh, and the known ones.
+  std::vector<SbbObstacle> activeObstacles(double t) const;
 
   GuidanceParams p_;
   LosGuidance los_;
   std::vector<Eigen::Vector3d> base_path_, planned_;
   std::vector<bool> planned_detour_;
-  std::vector<SbbObstacle> obstacles_;
+  std::vector<SbbObstacle> obstacles_, known_;
   SbbPlan plan_;  // the last plan: its boxes' sides are kept while safe
   VehicleState state_;
   double state_time_ = 0.0, obstacles_time_ = -1e300;

@@ -16,6 +16,7 @@
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/guidance/los.h"
+#include "offshore_gnc/guidance/sbb.h"
 #include "offshore_gnc/safety/region.h"
 
 namespace offshore_gnc {
@@ -31,6 +32,8 @@ struct CoverageArea {
 std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a);
 
 inline const Eigen::Vector2d kNoPoint = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+// The surfaced AUV's id among guidance's obstacles (UsvMission::keepClear; no LiDAR target's tracker id).
+constexpr std::uint32_t kAuvObstacleId = 0xFFFFFFFEu;
 
 enum class AuvPhase { Idle, Coverage, TargetFound, NoTarget, Ascent, Surfaced, Recovered };
 enum class UsvPhase { StationKeeping, Transit, Arrived, Recovery, Recovered, Manual, PeerLost };
@@ -154,6 +157,7 @@ struct UsvMissionParams {
   double station_radius = 1.0;      // arrived, the USV is on station once this close to its hold point [m]
   double recovery_distance = 4.0;   // recovering, the bow holds this far from the surfaced AUV [m]
   double recovery_replan = 2.0;     // the recovery is planned again when the AUV's position moved this far [m]
+  double auv_extent = 1.5;          // the surfaced AUV's size for guidance's safety box about it (keepClear) [m]
   double settle_time = 10.0;        // both vehicles stationary this long: RECOVERED [s]
   static const ParamTable<UsvMissionParams>& table();
   void validate() const;
@@ -199,6 +203,12 @@ class UsvMission {
   void setBowReach(double metres) { bow_reach_ = std::max(0.0, metres); }
   void tick(double t);                     // time-based checks (peer timeout, manual released)
   std::optional<std::vector<Eigen::Vector2d>> takePath();
+  // What guidance must plan round besides what its LiDAR sees (GuidancePipeline::setKnownObstacles), current with
+  // each path takePath() gives: on the way to the recovery's run-in, when it passes the AUV closer than the recovery
+  // point, the surfaced AUV (kAuvObstacleId, auv_extent about its reported position; the simulated LiDAR has no AUV,
+  // a real one sees a low hull poorly); nothing once closing in along the axis (the bow's recovery_distance is the
+  // approach's own) or in any other phase.
+  std::vector<guidance::SbbObstacle> keepClear() const;
   double distanceToGo() const;             // along the transit path; NaN outside the transit
   // Arrived, when the USV first came within station_radius of the point guidance holds (NaN before): the hold at the
   // target counts from here (the main job's hold_time, the report's usv_hold_p95_m).
@@ -243,6 +253,7 @@ class UsvMission {
   Eigen::Vector2d auv_pos_ = kNoPoint, auv_planned_ = kNoPoint, recovery_point_ = kNoPoint, recovery_axis_ = kNoPoint;
   bool auv_stationary_ = false, alongside_ = false;  // alongside: closing in from the run-in point
   Eigen::Vector2d run_in_ = kNoPoint;
+  bool round_auv_ = false;  // the way to the run-in passes the AUV: guidance plans round it (keepClear)
   Eigen::Vector2d vane_ = kNoPoint;  // the bow's mean direction while holding: where the current comes from
   double pose_t_ = 0.0;
   double auv_t_ = -1e300, bow_reach_ = 0.0, settled_since_, recovered_t_, auv_still_since_;

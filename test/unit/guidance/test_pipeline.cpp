@@ -2,6 +2,7 @@
 // navigation, rejected paths, expired obstacles), fed plain structs and the time.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "offshore_gnc/guidance/paths.h"
@@ -130,6 +131,50 @@ TEST(GuidancePipeline, ObstaclesNotRefreshedExpireAtTheNextReplan) {
   ASSERT_TRUE(g.update(10.0, 0.1, o));
   EXPECT_TRUE(g.plan().boxes.empty());
   EXPECT_EQ(g.plannedPath().size(), route().size());
+}
+
+// What the mission knows of and the LiDAR may not see (the surfaced AUV the USV recovers): planned round like a seen
+// obstacle, kept without refreshing until the mission says otherwise, merged with what the LiDAR sees.
+TEST(GuidancePipeline, KnownObstaclesArePlannedRoundUntilWithdrawn) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  GuidanceOutput o;
+  g.setPath(route());
+  g.setState(at(10, 0), 0.0);
+  SbbObstacle auv = buoy(50, 0.3);
+  auv.id = 99;
+  g.setKnownObstacles({auv});
+  ASSERT_TRUE(g.update(0.1, 0.1, o));
+  const SbbSide side = sideOf(g.plan());
+  ASSERT_TRUE(side == SbbSide::kPort || side == SbbSide::kStarboard);
+  auto clearOf = [&](const Eigen::Vector2d& c) {  // the least distance of the path followed from c
+    double d = 1e9;
+    const auto& p = g.plannedPath();
+    for (std::size_t i = 1; i < p.size(); ++i) {
+      const Eigen::Vector2d a = p[i - 1].head<2>(), b = p[i].head<2>();
+      const double k = std::clamp((c - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+      d = std::min(d, (a + k * (b - a) - c).norm());
+    }
+    return d;
+  };
+  EXPECT_GT(clearOf({50, 0.3}), 5.0);  // the box's half width, 0.6 + safety_y 5, plus the corridor
+  // 60 s on, never refreshed (a seen obstacle expires after 5 s) and a buoy seen beside the route: both planned round
+  g.setPath(route());
+  g.setState(at(10, 0), 60.0);
+  g.setObstacles({buoy(80, -0.2)}, 60.0);
+  ASSERT_TRUE(g.update(60.1, 0.1, o));
+  EXPECT_GT(clearOf({50, 0.3}), 5.0);
+  EXPECT_GT(clearOf({80, -0.2}), 5.0);
+  // withdrawn (the USV closes in along its own axis): the route is straight again where the AUV was
+  g.setKnownObstacles({});
+  g.setObstacles({}, 60.2);
+  ASSERT_TRUE(g.update(60.3, 0.1, o));
+  EXPECT_TRUE(o.planned_changed);
+  EXPECT_LT(clearOf({50, 0.3}), 0.5);
+  // bad geometry is dropped and counted, as a seen obstacle's
+  SbbObstacle bad = auv;
+  bad.origin.x() = std::nan("");
+  g.setKnownObstacles({bad});
+  EXPECT_EQ(g.counters().get("bad_obstacles"), 1u);
 }
 
 TEST(GuidancePipeline, BadInputIsRefusedWithAReason) {

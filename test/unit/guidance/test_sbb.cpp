@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "offshore_gnc/common/angles.h"
@@ -171,6 +172,26 @@ TEST(Sbb, OtherSideWhenTheNearSideIsTooFar) {
   const SbbPlan plan = planSbb({V3(0, 0, 0), V3(100, 0, 0)}, V2(0, -5), {buoy(1, 50, -4)}, p);
   ASSERT_EQ(plan.boxes.size(), 1u);
   EXPECT_EQ(plan.boxes[0].side, SbbSide::kStarboard);
+}
+
+// The vehicle already alongside a box (a surfaced AUV 5 m abeam, its box merged with another obstacle's ahead): the
+// run abeam to the first corner must not pass through an obstacle, so the nearer side, beyond the AUV, is not taken.
+TEST(Sbb, NoRunAbeamThroughAnObstacleWhenAlreadyAlongsideItsBox) {
+  const SbbParams p = params();
+  const SbbObstacle auv = buoy(1, 1, 5, 1.5);
+  const SbbPlan plan = planSbb({V3(0, 0, 0), V3(40, 0, 0)}, V2(0, 0), {auv, buoy(2, 8, -6)}, p);
+  ASSERT_FALSE(plan.blocked);
+  // one box, merged (the gap between the two is narrower than the vehicle's corridor twice); its nearer side,
+  // starboard (10.75 m against 12), lies beyond the AUV
+  ASSERT_EQ(plan.boxes.size(), 1u);
+  EXPECT_EQ(plan.boxes[0].side, SbbSide::kPort);
+  double least = 1e9;
+  for (std::size_t i = 1; i < plan.path.size(); ++i) {
+    const V2 a = plan.path[i - 1].head<2>(), b = plan.path[i].head<2>();
+    const double k = std::clamp((auv.origin - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    least = std::min(least, (a + k * (b - a) - auv.origin).norm());
+  }
+  EXPECT_GT(least, 0.75 + p.corridor);
 }
 
 TEST(Sbb, NonFiniteObstaclesIgnored) {

@@ -521,28 +521,32 @@ TEST(UsvMission, KeepsItsDistanceFromAnAuvThatMoves) {
   EXPECT_FALSE(m.takePath());
 }
 
-TEST(UsvMission, RoundsTheAuvWhenTheWayToTheRunInPassesClose) {
+TEST(UsvMission, AsksGuidanceToRoundTheAuvWhenTheWayToTheRunInPassesClose) {
   UsvMission m;
   arrived(m);
+  EXPECT_TRUE(m.keepClear().empty());  // nothing besides the LiDAR's before the recovery
   m.onPose({50, -12}, -kPi / 2, 160.0);  // upstream of the AUV, on the line through it
   m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
   auto p = m.takePath();
   ASSERT_TRUE(p);
-  // a leg beside the AUV 9.3 m off (bow reach + recovery distance) on the USV's side, parallel to the recovery axis,
-  // from abeam upstream to abeam downstream of it, then the run-in
-  bool upstream = false, downstream = false;
-  for (const auto& w : *p) {
-    const bool off = std::abs(std::abs(w.x() - 50.0) - 9.3) < 1e-9;
-    upstream |= off && std::abs(w.y() + 9.3) < 1e-9;
-    downstream |= off && std::abs(w.y() - 9.3) < 1e-9;
-  }
-  EXPECT_TRUE(upstream);
-  EXPECT_TRUE(downstream);
-  for (std::size_t i = 1; i < p->size(); ++i) {  // no leg passes closer than 0.9 of that
-    const Eigen::Vector2d a = (*p)[i - 1], b = (*p)[i], c(50, 0);
-    const double k = std::clamp((c - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    EXPECT_GT((a + k * (b - a) - c).norm(), 0.9 * 9.3) << i;
-  }
+  // straight to the run-in; guidance plans round the AUV (its safety box, whose corners it reaches within the
+  // detour radius: the mission's own legs beside it were cut by the 16 m circle of acceptance)
+  EXPECT_LT((p->back() - Eigen::Vector2d(50, 19.3)).norm(), 1e-9);
+  const auto keep = m.keepClear();
+  ASSERT_EQ(keep.size(), 1u);
+  EXPECT_EQ(keep[0].id, kAuvObstacleId);
+  EXPECT_LT((keep[0].origin - Eigen::Vector2d(50, 0)).norm(), 1e-9);
+  EXPECT_DOUBLE_EQ(keep[0].length, UsvMissionParams().auv_extent);
+  // the AUV drifts 3 m: planned again from where the USV is, now beside it and past it: the way no longer passes it
+  m.onPose({41, 8}, -kPi / 2, 170.0);
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 3, 0}, true, 171.0);
+  ASSERT_TRUE(m.takePath());
+  EXPECT_TRUE(m.keepClear().empty());
+  // closing in along the axis: the bow's recovery distance is the approach's own, guidance is not told of the AUV
+  m.onPose({50, 22}, -kPi / 2, 200.0);
+  for (double t = 200.0; t <= 212.0; t += 0.5) m.onAuvStatus(AuvPhase::Surfaced, {50, 3, 0}, true, t);
+  ASSERT_TRUE(m.takePath());
+  EXPECT_TRUE(m.keepClear().empty());
 }
 
 TEST(UsvMission, WithoutATargetGoesStraightToRecovery) {
