@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "offshore_gnc/common/validate.h"
 
@@ -178,10 +179,10 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
         }
         return false;
       };
-      const SbbSide other = first == SbbSide::kPort ? SbbSide::kStarboard : SbbSide::kPort;
-      if (through(first) && !through(other)) first = other;
+      SbbSide second = first == SbbSide::kPort ? SbbSide::kStarboard : SbbSide::kPort;
+      if (through(first) && !through(second)) std::swap(first, second);
       SbbSide chosen = SbbSide::kBlocked;
-      for (SbbSide side : {first, first == SbbSide::kPort ? SbbSide::kStarboard : SbbSide::kPort}) {
+      for (SbbSide side : {first, second}) {
         const double e = side == SbbSide::kPort ? port : stbd;
         if (std::abs(e) > p.max_offset) continue;
         chosen = side;

@@ -626,8 +626,9 @@ void UsvMission::planRecovery(double t) {
     return;
   }
   // The way to the run-in: straight, and when it passes the AUV closer than the recovery point, round it by
-  // guidance's safety box about it (keepClear()): its corners are reached within the detour radius, and the AUV's
-  // box keeps its side across replans. (The mission's own legs beside the AUV, 9.3 m off, were ordinary waypoints:
+  // guidance's safety box about it (keepClear()): its corners are reached within the detour radius, and its side is
+  // kept while guidance replans the same path (each new path here chooses afresh, as any new path does in guidance).
+  // (The mission's own legs beside the AUV, 9.3 m off, were ordinary waypoints:
   // guidance's 16 m circle of acceptance cut them, and in the evaluation campaign the hull touched the AUV in 6 of
   // 100 runs, 2026-12-05.) Only then: a box behind the USV merged with a shore's boxes and blocked the way.
   round_auv_ = segmentDistance(u, run_in_, auv) < off;
