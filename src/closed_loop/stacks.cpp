@@ -158,8 +158,9 @@ UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
       mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {
   if (!cfg.safety.region.empty()) mission_.setRegion(safety::Region::fromList(cfg.safety.region));
   // the recovery distance is the bow's, a hold keeps the hull clear (as the nodelets read the outline)
-  mission_.setBowReach(cfg.hull.ahead());
-  guidance_.setHullReach({cfg.hull.ahead(), cfg.hull.astern(), cfg.hull.abeam()});
+  const guidance::HullReach reach{cfg.hull.ahead(), cfg.hull.astern(), cfg.hull.abeam()};
+  mission_.setHullReach(reach);
+  guidance_.setHullReach(reach);
 }
 
 void UsvStack::pathToGuidance() {
@@ -281,6 +282,8 @@ void UsvStack::step() {
     guided_ = true;
     course = course || last_.boxes_changed;
     control_.onReference(last_.reference, t);
+    // what guidance plans round, at each replan (the nodelet's guidance/obstacles)
+    if (cfg_.mission_enabled && last_.boxes_changed) mission_.setObstacles(guidance_.obstacles(t));
     if (cfg_.mission_enabled)
       mission_.onGuidance(last_.los.mode, last_.los.distance_to_go, t,
                           last_.reference.mode == ReferenceMode::kHold ? Eigen::Vector2d(last_.reference.point.head<2>())

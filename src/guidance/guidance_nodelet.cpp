@@ -23,6 +23,7 @@
 #include "offshore_gnc/ros/markers.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/ros/reconfigure.h"
+#include "ros_obstacles.h"
 
 namespace offshore_gnc {
 
@@ -50,6 +51,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     status_pub_ = nh.advertise<GuidanceStatus>("guidance/status", 10);
     boxes_pub_ = nh.advertise<SafetyBoxArray>("guidance/safety_boxes", 1, true);
     planned_pub_ = nh.advertise<nav_msgs::Path>("guidance/planned_path", 1, true);
+    obstacles_pub_ = nh.advertise<TargetArray>("guidance/obstacles", 1, true);
     markers_.advertise(nh, "markers", "sbb", true);
     path_sub_ = nh.subscribe("guidance/path", 1, &GuidanceNodelet::onPath, this);
     odom_sub_ = nh.subscribe("odom", 10, &GuidanceNodelet::onOdom, this);
@@ -105,28 +107,15 @@ class GuidanceNodelet : public nodelet::Nodelet {
     pipeline_->setState(ros_util::stateFromOdom(*m), ros::Time::now().toSec());
   }
 
-  static std::vector<guidance::SbbObstacle> obstaclesOf(const TargetArray& m) {
-    std::vector<guidance::SbbObstacle> obstacles;
-    for (const auto& t : m.targets) {
-      guidance::SbbObstacle o;
-      o.id = t.id;
-      o.origin = Eigen::Vector2d(t.origin.x, t.origin.y);
-      o.length = t.length;
-      o.width = t.width;
-      obstacles.push_back(o);
-    }
-    return obstacles;
-  }
-
   void onObstacles(const TargetArray::ConstPtr& m) {
     std::lock_guard<std::mutex> l(mutex_);
-    pipeline_->setObstacles(obstaclesOf(*m), ros::Time::now().toSec());
+    pipeline_->setObstacles(guidance_ros::obstaclesOf(*m), ros::Time::now().toSec());
   }
 
   // the mission's (the surfaced AUV it recovers): kept until the next message
   void onKeepClear(const TargetArray::ConstPtr& m) {
     std::lock_guard<std::mutex> l(mutex_);
-    pipeline_->setKnownObstacles(obstaclesOf(*m));
+    pipeline_->setKnownObstacles(guidance_ros::obstaclesOf(*m));
   }
 
   void onTimer(const ros::TimerEvent& ev) {
@@ -199,6 +188,9 @@ class GuidanceNodelet : public nodelet::Nodelet {
     }
     boxes_pub_.publish(a);
     markers_.publish(std::move(ma), a.header);
+    // what the boxes were planned round, those kept out of the LiDAR's view among them (the mission's recovery)
+    obstacles_pub_.publish(guidance_ros::targetsOf(pipeline_->obstacles(ros::Time::now().toSec()), a.header,
+                                                   Target::SOURCE_LIDAR));
   }
 
   std::string frame_;
@@ -208,7 +200,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
   boost::recursive_mutex reconf_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<GuidanceConfig>> reconfigure_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
-  ros::Publisher status_pub_, boxes_pub_, planned_pub_;
+  ros::Publisher status_pub_, boxes_pub_, planned_pub_, obstacles_pub_;
   ros_util::NamespaceMarkers markers_;
   ros::Subscriber path_sub_, odom_sub_, obstacles_sub_, keep_clear_sub_;
   ros::Timer timer_;

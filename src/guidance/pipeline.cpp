@@ -73,8 +73,7 @@ const ParamTable<GuidanceParams>& GuidanceParams::table() {
       .nest("los/", &P::los, LosParams::table())
       .nest("sbb/", &P::sbb, SbbParams::table())
       .flag("sbb/enabled", &P::sbb_enabled, "plan safety boxes around obstacles")
-      .number("sbb/obstacle_timeout", &P::obstacle_timeout, 0.1, 3600.0, "s",
-              "obstacles not refreshed for this long are dropped at the next replan")
+      .nest("sbb/", &P::obstacles, ObstacleMemoryParams::table())
       .number("sbb/replan_distance", &P::replan_distance, 0.0, 100.0, "m",
               "re-set the LOS path only when a planned waypoint moved more than this")
       .number("odom_timeout", &P::odom_timeout, 0.01, 60.0, "s", "older navigation: hold the last good position")
@@ -84,11 +83,12 @@ const ParamTable<GuidanceParams>& GuidanceParams::table() {
 
 void GuidanceParams::validate() const { table().validate(*this); }
 
-GuidancePipeline::GuidancePipeline(const GuidanceParams& p) : p_(p), los_(p.los) { p_.validate(); }
+GuidancePipeline::GuidancePipeline(const GuidanceParams& p) : p_(p), los_(p.los), seen_(p.obstacles) { p_.validate(); }
 
 void GuidancePipeline::setParams(const GuidanceParams& p) {
   p.validate();
   los_.setParams(p.los);
+  seen_.setParams(p.obstacles);
   p_ = p;
   replan_ = true;
 }
@@ -125,8 +125,8 @@ std::vector<SbbObstacle> finiteObstacles(const std::vector<SbbObstacle>& obstacl
 }  // namespace
 
 void GuidancePipeline::setObstacles(const std::vector<SbbObstacle>& obstacles, double t) {
-  obstacles_ = finiteObstacles(obstacles, counters_);
-  obstacles_time_ = t;
+  const Eigen::Vector2d at = have_state_ ? Eigen::Vector2d(state_.position.head<2>()) : Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+  seen_.update(finiteObstacles(obstacles, counters_), at, state_.yaw, t);
   replan_ = true;
 }
 
@@ -135,10 +135,10 @@ void GuidancePipeline::setKnownObstacles(const std::vector<SbbObstacle>& obstacl
   replan_ = true;
 }
 
-std::vector<SbbObstacle> GuidancePipeline::activeObstacles(double t) const {
+std::vector<SbbObstacle> GuidancePipeline::obstacles(double t) const {
   std::vector<SbbObstacle> all;
   if (!p_.sbb_enabled) return all;
-  if (t - obstacles_time_ <= p_.obstacle_timeout) all = obstacles_;
+  all = seen_.active(t);
   all.insert(all.end(), known_.begin(), known_.end());
   return all;
 }
@@ -150,7 +150,7 @@ void GuidancePipeline::setState(const VehicleState& s, double t) {
 }
 
 void GuidancePipeline::replan(const VehicleState& s, double t) {
-  const std::vector<SbbObstacle> obstacles = activeObstacles(t);
+  const std::vector<SbbObstacle> obstacles = this->obstacles(t);
   SbbPlan plan;
   double length = 0.0;
   for (std::size_t i = 1; i < base_path_.size(); ++i) length += (base_path_[i] - base_path_[i - 1]).head<2>().norm();
@@ -202,7 +202,7 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
 }
 
 void GuidancePipeline::keepHoldClear(double t, GuidanceOutput& out) {
-  const std::vector<SbbObstacle> obstacles = activeObstacles(t);
+  const std::vector<SbbObstacle> obstacles = this->obstacles(t);
   if (obstacles.empty()) return;
   const Eigen::Vector2d asked = out.reference.point.head<2>();
   // Another hold point: choose afresh. One a little off the last (a recovery's point follows the AUV's reported

@@ -1,9 +1,13 @@
 #include "offshore_gnc/mission/mission.h"
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
+#include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/guidance/paths.h"
 
@@ -392,6 +396,8 @@ const ParamTable<UsvMissionParams>& UsvMissionParams::table() {
       .number("auv_extent", &P::auv_extent, 0.1, 50.0, "m",
               "the surfaced AUV's size as guidance's safety box about its reported position takes it on the way to "
               "the run-in (the Girona500's length; the aColor's 1.0 m fits in it)")
+      .number("recovery_clearance", &P::recovery_clearance, 0.0, 100.0, "m",
+              "recovering, the hull closing in and holding keeps this clear of an obstacle's extent (the side chosen)")
       .number("settle_time", &P::settle_time, 0.0, 3600.0, "s", "both vehicles stationary this long: RECOVERED");
   return t;
 }
@@ -571,8 +577,9 @@ void UsvMission::recover(double t) {
     phase_ = UsvPhase::Recovery;
     // the side away from the current: the dynamic positioning has turned the bow into it, so downstream is astern;
     // without a current any side is as good
-    recovery_axis_ = vane_.norm() > 1e-3 ? Eigen::Vector2d(vane_.normalized())
-                                         : Eigen::Vector2d(std::cos(heading_), std::sin(heading_));
+    downstream_ = vane_.norm() > 1e-3 ? Eigen::Vector2d(vane_.normalized())
+                                      : Eigen::Vector2d(std::cos(heading_), std::sin(heading_));
+    recovery_axis_ = kNoPoint;
     planRecovery(t);
     return;
   }
@@ -604,9 +611,42 @@ bool UsvMission::auvHeld(double t) const {
   return auv_stationary_ && t - auv_still_since_ >= p_.settle_time && t - auv_t_ <= p_.settle_time;
 }
 
+void UsvMission::setObstacles(const std::vector<guidance::SbbObstacle>& obstacles) {
+  obstacles_.clear();
+  for (const auto& o : obstacles)
+    if (o.id != kAuvObstacleId && o.origin.allFinite() && std::isfinite(o.length) && std::isfinite(o.width))
+      obstacles_.push_back(o);
+}
+
+Eigen::Vector2d UsvMission::recoveryAxis(const Eigen::Vector2d& auv) {
+  // the hull from its stern at the run-in to its bow holding recovery_distance off the AUV
+  const double run = hull_.astern + hull_.ahead + p_.waypoint_spacing;
+  auto clear = [&](const Eigen::Vector2d& up) {
+    const Eigen::Vector2d bow = auv - p_.recovery_distance * up, stern = bow - run * up;
+    for (const auto& o : obstacles_)
+      if (segmentDistance(stern, bow, o.origin) < 0.5 * std::max(o.length, o.width) + hull_.abeam + p_.recovery_clearance)
+        return false;
+    return true;
+  };
+  if (recovery_axis_.allFinite() && clear(recovery_axis_)) return recovery_axis_;
+  // from the current's, by 30 degrees either way: of each pair first the side whose hold is nearer the USV
+  const double off = p_.recovery_distance + hull_.ahead;
+  for (double deg : {0.0, 30.0, 60.0, 90.0}) {
+    Eigen::Vector2d sides[2];
+    for (int k = 0; k < 2; ++k) sides[k] = Eigen::Rotation2Dd(deg2rad(k ? -deg : deg)) * downstream_;
+    if (pose_ && ((auv - off * sides[1]) - *pose_).norm() < ((auv - off * sides[0]) - *pose_).norm())
+      std::swap(sides[0], sides[1]);
+    for (const auto& up : sides)
+      if (clear(up)) return up;
+  }
+  counters_.increment("recovery_side_blocked");
+  return downstream_;
+}
+
 void UsvMission::planRecovery(double t) {
+  recovery_axis_ = recoveryAxis(auv_pos_);
   const Eigen::Vector2d auv = auv_pos_, up = recovery_axis_, u = *pose_;
-  const double off = p_.recovery_distance + bow_reach_;  // the reference point's distance: the bow at recovery_distance
+  const double off = p_.recovery_distance + hull_.ahead;  // the reference point's distance: the bow at recovery_distance
   const double heading = std::atan2(up.y(), up.x());     // bow on to the AUV
   recovery_point_ = auv - off * up;                       // downstream of it
   run_in_ = recovery_point_ - p_.waypoint_spacing * up;

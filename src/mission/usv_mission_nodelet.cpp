@@ -22,6 +22,7 @@
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/safety/supervisor.h"
 #include "ros_mission.h"
+#include "../guidance/ros_obstacles.h"
 
 namespace offshore_gnc {
 
@@ -43,7 +44,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
       models::HullFootprint hull;
       ros_util::readParams(ros_util::ParamReader(nh), models::HullFootprint::table(), hull);
       hull.validate();
-      mission_->setBowReach(hull.ahead());
+      mission_->setHullReach({hull.ahead(), hull.astern(), hull.abeam()});
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -58,6 +59,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     manual_sub_ = nh.subscribe("manual_cmd", 10, &UsvMissionNodelet::onManual, this);
     link_sub_ = nh.subscribe("/relay/link_status", 10, &UsvMissionNodelet::onLink, this);
     auv_sub_ = nh.subscribe("/auv/mission/status", 10, &UsvMissionNodelet::onAuvStatus, this);  // relayed
+    obstacles_sub_ = nh.subscribe("guidance/obstacles", 1, &UsvMissionNodelet::onObstacles, this);
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("usv_mission");
     updater_->add("mission", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
@@ -65,7 +67,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
       s.summary(ph == mission::UsvPhase::PeerLost ? diagnostic_msgs::DiagnosticStatus::WARN
                                                   : diagnostic_msgs::DiagnosticStatus::OK,
                 mission::toString(ph));
-      ros_util::addCounters(s, mission_->counters(), {"target_not_finite", "pose_not_finite", "target_outside_region"});
+      ros_util::addCounters(s, mission_->counters(), {"target_not_finite", "pose_not_finite", "target_outside_region", "recovery_side_blocked"});
     });
     timer_ = nh.createTimer(ros::Duration(0.5), &UsvMissionNodelet::onTimer, this);
   }
@@ -79,21 +81,10 @@ class UsvMissionNodelet : public nodelet::Nodelet {
   void publishPath() {
     if (auto path = mission_->takePath()) {
       // what guidance must plan round besides its LiDAR's (the surfaced AUV), current before the path arrives
-      TargetArray keep;
-      keep.header.stamp = ros::Time::now();
-      keep.header.frame_id = "map_ned";
-      for (const auto& o : mission_->keepClear()) {
-        Target t;
-        t.header = keep.header;
-        t.id = o.id;
-        t.source = Target::SOURCE_MISSION;
-        t.origin.x = t.centroid.x = t.nearest.x = o.origin.x();
-        t.origin.y = t.centroid.y = t.nearest.y = o.origin.y();
-        t.length = o.length;
-        t.width = o.width;
-        keep.targets.push_back(t);
-      }
-      keep_clear_pub_.publish(keep);
+      std_msgs::Header h;
+      h.stamp = ros::Time::now();
+      h.frame_id = "map_ned";
+      keep_clear_pub_.publish(guidance_ros::targetsOf(mission_->keepClear(), h, Target::SOURCE_MISSION));
       std::vector<Eigen::Vector3d> pts;
       for (const auto& w : *path) pts.emplace_back(w.x(), w.y(), 0.0);
       path_pub_.publish(mission_ros::toPath(pts, ros::Time::now()));
@@ -115,6 +106,9 @@ class UsvMissionNodelet : public nodelet::Nodelet {
     publishPath();
     publishStatus();
   }
+
+  // what guidance plans round: the recovery's side keeps the hull clear of it
+  void onObstacles(const TargetArray::ConstPtr& m) { mission_->setObstacles(guidance_ros::obstaclesOf(*m)); }
 
   void onGuidance(const GuidanceStatus::ConstPtr& s) {
     const auto before = mission_->phase();
@@ -179,7 +173,7 @@ class UsvMissionNodelet : public nodelet::Nodelet {
 
   std::unique_ptr<mission::UsvMission> mission_;
   ros::Publisher path_pub_, keep_clear_pub_, status_pub_, markers_pub_;
-  ros::Subscriber target_sub_, odom_sub_, guidance_sub_, manual_sub_, link_sub_, auv_sub_;
+  ros::Subscriber target_sub_, odom_sub_, guidance_sub_, manual_sub_, link_sub_, auv_sub_, obstacles_sub_;
   ros::Timer timer_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
 };

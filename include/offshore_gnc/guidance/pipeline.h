@@ -12,6 +12,7 @@
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/guidance/los.h"
+#include "offshore_gnc/guidance/obstacle_memory.h"
 #include "offshore_gnc/guidance/sbb.h"
 #include "offshore_gnc/models/reference.h"
 #include "offshore_gnc/models/state.h"
@@ -24,7 +25,7 @@ struct GuidanceParams {
   LosParams los;
   SbbParams sbb;
   bool sbb_enabled = true;       // plan around obstacles (the USV's LiDAR targets)
-  double obstacle_timeout = 5.0; // obstacles not refreshed for this long are dropped [s]
+  ObstacleMemoryParams obstacles; // what is kept of the LiDAR's targets (sbb/obstacle_timeout, sbb/obstacle_memory...)
   double replan_distance = 0.5;  // re-set the LOS path only when a planned waypoint moved more than this [m]
   double odom_timeout = 1.0;     // older navigation -> hold the last good position [s]
   double rate = 10.0;            // guidance steps per second [Hz]
@@ -52,7 +53,8 @@ class GuidancePipeline {
   void setPath(const std::vector<Eigen::Vector3d>& path);
   // A path that cannot be used (e.g. in a frame guidance does not work in): hold, and say why.
   void rejectPath(const std::string& why);
-  // Obstacles seen at time t (NED). Non-finite geometry is dropped and counted.
+  // One obstacle frame's targets at time t (NED), placed with the last navigation state: kept with the ones seen
+  // before that the sensor cannot see from there (ObstacleMemory). Non-finite geometry is dropped and counted.
   void setObstacles(const std::vector<SbbObstacle>& obstacles, double t);
   // Obstacles the mission knows of that the LiDAR may not see (the surfaced AUV the USV recovers: the simulated
   // LiDAR has no AUV, and a real one sees a low hull poorly), planned round and kept clear of like the seen ones
@@ -68,6 +70,8 @@ class GuidancePipeline {
 
   const std::vector<Eigen::Vector3d>& plannedPath() const { return planned_; }
   const SbbPlan& plan() const { return plan_; }
+  // What is planned round at time t: the seen obstacles (fresh, or kept out of view), and the known ones.
+  std::vector<SbbObstacle> obstacles(double t) const;
   const Counters& counters() const { return counters_; }            // stale_odom, bad_obstacles, ...
   const Counters& losCounters() const { return los_.counters(); }   // nan_pose, bad_path, ...
 
@@ -76,17 +80,16 @@ class GuidancePipeline {
   // A hold point too close to an obstacle (sbb/hold_clearance) is refused: the nearest clear point is held instead,
   // and the status says so (counter hold_point_in_box).
   void keepHoldClear(double t, GuidanceOutput& out);
-  // What is planned round at time t: the seen obstacles while fresh, and the known ones.
-  std::vector<SbbObstacle> activeObstacles(double t) const;
 
   GuidanceParams p_;
   LosGuidance los_;
   std::vector<Eigen::Vector3d> base_path_, planned_;
   std::vector<bool> planned_detour_;
-  std::vector<SbbObstacle> obstacles_, known_;
+  ObstacleMemory seen_;
+  std::vector<SbbObstacle> known_;
   SbbPlan plan_;  // the last plan: its boxes' sides are kept while safe
   VehicleState state_;
-  double state_time_ = 0.0, obstacles_time_ = -1e300;
+  double state_time_ = 0.0;
   bool have_state_ = false, new_path_ = false, replan_ = false, planned_changed_ = false, boxes_changed_ = false;
   std::string reject_reason_;
   Eigen::Vector2d refused_hold_ = Eigen::Vector2d::Constant(1e300);  // the last hold point refused

@@ -201,7 +201,9 @@ TEST(GuidancePipeline, BadInputIsRefusedWithAReason) {
 }
 
 TEST(GuidancePipeline, AHoldPointTooCloseToAnObstacleIsRefusedAndAClearOneHeld) {
-  GuidancePipeline g(GuidanceParams::preset("usv"));
+  GuidanceParams p = GuidanceParams::preset("usv");
+  p.obstacles.sensor_near = 0.0;  // a sensor that sees right up to its bow: a buoy it misses there is gone
+  GuidancePipeline g(p);
   g.setState(at(-10, 0), 0.0);
   g.setPath({{-12, 0, 0}, {-10, 0, 0}});  // a hold (the mission's lead-in to its station at N -10)
   GuidanceOutput out;
@@ -258,4 +260,55 @@ TEST(SafeHoldPoint, AMovedHoldStaysOnItsSideWhenTheBoxTakesItIn) {
   EXPECT_NEAR((kept.point - side).norm(), 0.5, 1e-2);    // just out of the grown box, on the same side
   EXPECT_GT((fresh.point - side).norm(), 6.0);            // without the hint: the nearest way out, across
   EXPECT_NEAR(kept.point.norm(), 4.1, 1e-2);
+}
+
+// The LiDAR on the bow is blind astern and close beside the hull: a buoy seen for a while and then left astern or
+// alongside is still planned round (and a hold kept clear of it), while one the sensor looks at and does not see is
+// gone at once; a target seen once (spray) is not remembered; after obstacle_memory it is forgotten.
+TEST(ObstacleMemory, KeepsWhatTheSensorCannotSeeAndDropsWhatItLooksAtAndMisses) {
+  ObstacleMemoryParams p;  // the USV's: 275 degrees from 1.5 m ahead, blind nearer than 8 m
+  ObstacleMemory m(p);
+  const Eigen::Vector2d here(0, 0);
+  for (int i = 0; i < 5; ++i) m.update({buoy(20, 0)}, here, 0.0, 0.1 * i);  // ahead, 5 frames
+  ASSERT_EQ(m.active(0.5).size(), 1u);
+  // the boat went past it: 12 m astern, outside the aperture
+  m.update({}, {32, 0}, 0.0, 10.0);
+  EXPECT_EQ(m.active(10.0).size(), 1u);
+  EXPECT_EQ(m.remembered(), 1);
+  // turned round, 30 m off and looking at it, it is not there: gone
+  m.update({}, {50, 0}, kPi, 11.0);
+  EXPECT_TRUE(m.active(11.0).empty());
+  // alongside (3 m abeam, inside the aperture but nearer than sensor_near): kept; after obstacle_memory: forgotten
+  for (int i = 0; i < 5; ++i) m.update({buoy(20, 0)}, here, 0.0, 20.0 + 0.1 * i);
+  m.update({}, {20, -3}, 0.0, 30.0);
+  EXPECT_EQ(m.active(30.0).size(), 1u);
+  m.update({}, {20, -3}, 0.0, 20.4 + p.memory + 1.0);
+  EXPECT_TRUE(m.active(20.4 + p.memory + 1.0).empty());
+  // seen once (spray), then astern: not kept
+  m.update({buoy(20, 0)}, here, 0.0, 400.0);
+  m.update({}, {32, 0}, 0.0, 401.0);
+  EXPECT_TRUE(m.active(401.0).empty());
+  // a cluster seen again a little off (it splits, it swings) is the same obstacle: its count goes on
+  for (int i = 0; i < 5; ++i) m.update({buoy(20, 0.4 * (i % 2))}, here, 0.0, 500.0 + 0.1 * i);
+  m.update({}, {32, 0}, 0.0, 501.0);
+  EXPECT_EQ(m.active(501.0).size(), 1u);
+  // no frame for obstacle_timeout (the sensor is gone): nothing is planned round
+  EXPECT_TRUE(m.active(501.0 + p.timeout + 0.1).empty());
+}
+
+// In the pipeline: the hold point stays clear of a buoy the boat has come alongside and no longer sees.
+TEST(GuidancePipeline, KeepsAHoldClearOfAnObstacleLeftOutOfTheLidarsView) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  g.setHullReach({5.3, 2.7, 1.3});
+  GuidanceOutput o;
+  g.setPath({{0, 0, 0}, {2, 0, 0}});  // a hold at (2, 0), heading north
+  g.setState(at(-20, 0), 0.0);
+  for (int i = 0; i < 10; ++i) g.setObstacles({buoy(-2, 1)}, 0.1 * i);  // seen on the way in
+  g.setState(at(2, 0), 60.0);
+  g.setObstacles({}, 60.0);  // the buoy is under the stern now: astern of the sensor
+  ASSERT_TRUE(g.update(60.1, 0.1, o));
+  ASSERT_EQ(g.obstacles(60.1).size(), 1u);
+  // the hull (2.7 m astern of the point, 1.3 m abeam) keeps hold_clearance (3 m) from the buoy's extent
+  EXPECT_GT((o.reference.point.head<2>() - Eigen::Vector2d(2, 0)).norm(), 0.5);
+  EXPECT_NE(o.los.status_text.find("too close to obstacle 7"), std::string::npos) << o.los.status_text;
 }

@@ -434,7 +434,7 @@ namespace {
 // A USV that arrived at (42, 3) with its bow into a current from the west (heading west), and the AUV surfaced at
 // (50, 0): downstream of it is east.
 void arrived(UsvMission& m) {
-  m.setBowReach(5.3);
+  m.setHullReach({5.3, 2.7, 1.3});
   m.onPose({0, 3}, -kPi / 2, 0.0);
   EXPECT_TRUE(m.onTarget({45, 3}, 1.0));
   m.onPathFinished(100.0);
@@ -489,6 +489,40 @@ TEST(UsvMission, RecoversTheSurfacedAuvDownstreamBowOn) {
   EXPECT_EQ(m.phase(), UsvPhase::Recovered);
   EXPECT_TRUE(m.finished());
   EXPECT_DOUBLE_EQ(m.recoveredAt(), 226.0);
+}
+
+// A buoy 14 m downstream of the AUV lies under the close-in: dynamic positioning's straight run from the run-in plans
+// round nothing, so the mission turns the axis (30 degrees, to the USV's side) until the hull's whole run keeps
+// recovery_clearance from it; the AUV's own keep-clear box is not an obstacle of this kind.
+TEST(UsvMission, TurnsTheRecoveryAxisOffAnObstacleUnderTheCloseIn) {
+  UsvMission m;
+  arrived(m);
+  guidance::SbbObstacle buoy, auv_box;
+  buoy.id = 7;
+  buoy.origin = {50, 14};
+  buoy.length = buoy.width = 0.6;
+  auv_box.id = kAuvObstacleId;
+  auv_box.origin = {48, 5};
+  auv_box.length = auv_box.width = 1.5;
+  m.setObstacles({buoy, auv_box});
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
+  ASSERT_EQ(m.phase(), UsvPhase::Recovery);
+  const Eigen::Vector2d off = m.recoveryPoint() - Eigen::Vector2d(50, 0);
+  EXPECT_NEAR(off.norm(), 9.3, 1e-9);
+  EXPECT_NEAR(std::acos(off.normalized().dot(Eigen::Vector2d(0, 1))), deg2rad(30.0), 1e-9);
+  EXPECT_LT(off.x(), 0.0);  // the side of the USV, waiting at (42, 3)
+  // the hull from its bow 4 m off the AUV to its stern at the run-in: clear of the buoy by 3 m and its half beam
+  const Eigen::Vector2d up = -off.normalized(), bow = Eigen::Vector2d(50, 0) - 4.0 * up;
+  const Eigen::Vector2d stern = bow - (5.3 + 2.7 + 10.0) * up;
+  const double along = std::clamp((buoy.origin - bow).dot(stern - bow) / (stern - bow).squaredNorm(), 0.0, 1.0);
+  EXPECT_GE((bow + along * (stern - bow) - buoy.origin).norm(), 0.3 + 1.3 + 3.0);
+  EXPECT_EQ(m.counters().get("recovery_side_blocked"), 0u);
+  // kept while clear, however the AUV moves; with obstacles on every side: the current's axis, counted
+  m.setObstacles({buoy, auv_box, {8, {35, 2}, 0.6, 0.6}, {9, {44, 12}, 0.6, 0.6}, {10, {56, 12}, 0.6, 0.6},
+                  {11, {63, 3}, 0.6, 0.6}, {12, {60, 9}, 0.6, 0.6}, {13, {40, 9}, 0.6, 0.6}});
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 3, 0}, true, 170.0);
+  EXPECT_LT((m.recoveryPoint() - Eigen::Vector2d(50, 12.3)).norm(), 1e-9);
+  EXPECT_EQ(m.counters().get("recovery_side_blocked"), 1u);
 }
 
 TEST(UsvMission, KeepsItsDistanceFromAnAuvThatMoves) {
