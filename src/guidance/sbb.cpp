@@ -166,6 +166,22 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
         });
         if (same && b.cuts_path && (b.side == SbbSide::kPort || b.side == SbbSide::kStarboard)) first = b.side;
       }
+      // The same obstacle across several legs of this path (a box longer than the waypoint spacing) is passed on
+      // the side its first leg took: chosen leg by leg, a run abeam on one leg and the nearer side on the next put
+      // the detour back across the box (a surfaced AUV's box merged with a moored vessel's, 2026-12-05: the path
+      // zig-zagged through the AUV).
+      // (The same obstacle: one inside both boxes. LiDAR targets come without tracker ids.)
+      bool kept_in_plan = false;
+      for (const auto& b : out.boxes) {
+        if (b.side != SbbSide::kPort && b.side != SbbSide::kStarboard) continue;
+        for (const auto& o : obs) {
+          const Eigen::Vector2d q = f.toLeg(o.origin);
+          if (q.x() > r.s_lo && q.x() < r.s_hi && q.y() > r.e_lo && q.y() < r.e_hi && b.contains(o.origin)) {
+            first = b.side;
+            kept_in_plan = true;
+          }
+        }
+      }
       // A box that reaches back past the leg's start (the vehicle already alongside it) is entered by a run abeam
       // to its first corner: never one through an obstacle itself (a surfaced AUV in a box merged with a shore's:
       // the nearer side lay beyond the AUV, and the run there touched it). That side goes last.
@@ -180,7 +196,7 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
         return false;
       };
       SbbSide second = first == SbbSide::kPort ? SbbSide::kStarboard : SbbSide::kPort;
-      if (through(first) && !through(second)) std::swap(first, second);
+      if (!kept_in_plan && through(first) && !through(second)) std::swap(first, second);
       SbbSide chosen = SbbSide::kBlocked;
       for (SbbSide side : {first, second}) {
         const double e = side == SbbSide::kPort ? port : stbd;

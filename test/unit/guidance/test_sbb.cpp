@@ -194,6 +194,28 @@ TEST(Sbb, NoRunAbeamThroughAnObstacleWhenAlreadyAlongsideItsBox) {
   EXPECT_GT(least, 0.75 + p.corridor);
 }
 
+// The same merged box across the path's 10 m legs: every leg passes it on the side the first took. Chosen leg by
+// leg, the first leg's run abeam went to port (starboard lay through the AUV) and the next leg took the nearer
+// side, starboard: the detour crossed back through the box and the AUV (evaluation campaign run 44, 2026-12-05).
+TEST(Sbb, OneSideForAMergedBoxAcrossSeveralLegs) {
+  const SbbParams p = params();
+  const SbbObstacle auv = buoy(1, 1, 5, 1.5);
+  const SbbPlan plan = planSbb(straightLine(V3(0, 0, 0), V3(40, 0, 0), 10.0), V2(0, 0), {auv, buoy(2, 8, -6)}, p);
+  ASSERT_FALSE(plan.blocked);
+  ASSERT_GE(plan.boxes.size(), 2u);  // it cuts the first two legs
+  for (const auto& b : plan.boxes) EXPECT_EQ(b.side, SbbSide::kPort);
+  for (std::size_t i = 0; i < plan.path.size(); ++i)
+    if (plan.detour[i]) EXPECT_LT(plan.path[i].y(), -6.0) << i;
+  double least = 1e9;
+  for (std::size_t i = 1; i < plan.path.size(); ++i) {
+    const V2 a = plan.path[i - 1].head<2>(), b = plan.path[i].head<2>();
+    if ((b - a).norm() < 1e-9) continue;
+    const double k = std::clamp((auv.origin - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    least = std::min(least, (a + k * (b - a) - auv.origin).norm());
+  }
+  EXPECT_GT(least, 0.75 + p.corridor);
+}
+
 TEST(Sbb, NonFiniteObstaclesIgnored) {
   SbbObstacle o = buoy(1, std::nan(""), 0);
   const SbbPlan plan = planSbb({V3(0, 0, 0), V3(100, 0, 0)}, V2(0, 0), {o}, params());
