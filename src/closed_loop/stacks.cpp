@@ -283,7 +283,7 @@ void UsvStack::step() {
     course = course || last_.boxes_changed;
     control_.onReference(last_.reference, t);
     // what guidance plans round, at each replan (the nodelet's guidance/obstacles)
-    if (cfg_.mission_enabled && last_.boxes_changed) mission_.setObstacles(guidance_.obstacles(t));
+    if (cfg_.mission_enabled && last_.boxes_changed) mission_.setObstacles(guidance_.plannedRound());
     if (cfg_.mission_enabled)
       mission_.onGuidance(last_.los.mode, last_.los.distance_to_go, t,
                           last_.reference.mode == ReferenceMode::kHold ? Eigen::Vector2d(last_.reference.point.head<2>())
@@ -446,8 +446,10 @@ void AuvStack::step() {
     usbl_->step(t, usv_truth_, sim_.state());
     surfaceGps(t);
     for (double s : usbl_->acceptedNow()) sup.heard(safety::Source::kUsbl, s);
-    if (step_ % navigation_every_ == 0)
+    if (step_ % navigation_every_ == 0) {
+      control_.onFixLost(usbl_->status(t) == navigation::NavStatus::kFixLost);  // /auv/navigation/status
       if (auto e = usbl_->estimate(t)) navigate(*e, t);
+    }
   } else if (out.odom) {  // the simulator's INS estimate: /auv/odom and its TF
     navigate(*out.odom, t);
   }

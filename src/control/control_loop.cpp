@@ -53,6 +53,10 @@ void ControlLoop::onState(const VehicleState& s, double t) {
   have_state_ = true;
 }
 
+void ControlLoop::onFixLost(bool lost) {
+  if (acolor_) acolor_->setFixLost(lost);
+}
+
 const char* safetyOverrideName(SafetyOverride o) {
   switch (o) {
     case SafetyOverride::kNone: return "none";

@@ -17,6 +17,7 @@
 #include <offshore_gnc/ThrusterSetpoints.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
+#include <std_msgs/String.h>
 
 #include <memory>
 #include <mutex>
@@ -48,6 +49,7 @@ class ControlNodelet : public nodelet::Nodelet {
       } else {
         ros_util::readParams(p, control::AcolorControlParams::table(), cp.acolor);
         rc_pub_ = nh.advertise<RcChannels>("rc_channels", 10);
+        nav_status_sub_ = nh.subscribe("navigation/status", 1, &ControlNodelet::onNavStatus, this);  // latched
       }
       loop_ = std::make_unique<control::ControlLoop>(cp);
     } catch (const ConfigError& e) {
@@ -125,6 +127,10 @@ class ControlNodelet : public nodelet::Nodelet {
     std::lock_guard<std::mutex> l(mutex_);
     loop_->onReference(ros_util::referenceFromStatus(*m), ros::Time::now().toSec());
   }
+  void onNavStatus(const std_msgs::String::ConstPtr& m) {
+    std::lock_guard<std::mutex> l(mutex_);
+    loop_->onFixLost(m->data == ros_util::nav_status::kFixLost);
+  }
   void onOdom(const nav_msgs::Odometry::ConstPtr& m) {
     std::lock_guard<std::mutex> l(mutex_);
     loop_->onState(ros_util::stateFromOdom(*m), ros::Time::now().toSec());
@@ -181,7 +187,7 @@ class ControlNodelet : public nodelet::Nodelet {
   std::unique_ptr<dynamic_reconfigure::Server<ControlConfig>> reconfigure_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::Publisher joy_pub_, thr_pub_, rc_pub_;
-  ros::Subscriber status_sub_, odom_sub_, safety_sub_;
+  ros::Subscriber status_sub_, odom_sub_, safety_sub_, nav_status_sub_;
   ros::Timer timer_;
 };
 

@@ -218,7 +218,9 @@ std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const
     counters_.increment(stateFinite(s) ? "bad_reference" : "nan_state");
     return ch;  // neutral on every channel
   }
-  if (r.mode != ReferenceMode::kHold) {
+  const bool blind = r.mode == ReferenceMode::kHold && fix_lost_;
+  if (blind) counters_.increment("hold_without_fix");
+  if (r.mode != ReferenceMode::kHold || blind) {
     north_.reset();
     east_.reset();
   }
@@ -235,7 +237,7 @@ std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const
   // Constant surge while following; holding, the position PIDs (without gains it stops and holds its depth).
   ch[p_.channel_surge - 1] =
       r.mode == ReferenceMode::kFollow && p_.surge_command_for ? pwm(p_.surge_command_for(r.surge)) : 1500;
-  if (r.mode == ReferenceMode::kHold) {
+  if (r.mode == ReferenceMode::kHold && !blind) {
     const Eigen::Vector2d e = r.point.head<2>() - s.position.head<2>();
     const Eigen::Vector2d v = toNed(s.velocity.head<2>(), s.yaw);
     const Eigen::Vector2d f = toBody({north_.update(e.x(), -v.x(), p_.dt), east_.update(e.y(), -v.y(), p_.dt)}, s.yaw);

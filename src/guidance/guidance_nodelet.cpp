@@ -73,6 +73,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
                 last_.los.status_text.empty() ? "idle" : last_.los.status_text);
       ros_util::addCounters(s, pipeline_->losCounters(), {"nan_pose", "bad_path", "bad_dt"});
       ros_util::addCounters(s, pipeline_->counters(), {"stale_odom", "bad_obstacles", "rejected_paths"});
+      s.add("obstacles_remembered", pipeline_->remembered());  // kept from memory, out of the LiDAR's view
     });
     timer_ = nh.createTimer(ros::Duration(1.0 / gp.rate), &GuidanceNodelet::onTimer, this);
     NODELET_INFO("%s guidance: LOS kp %.4f ki %.4f crab %s, R %.1f m (%s), SBB %s", gp.vehicle.c_str(), gp.los.kp,
@@ -189,8 +190,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     boxes_pub_.publish(a);
     markers_.publish(std::move(ma), a.header);
     // what the boxes were planned round, those kept out of the LiDAR's view among them (the mission's recovery)
-    obstacles_pub_.publish(guidance_ros::targetsOf(pipeline_->obstacles(ros::Time::now().toSec()), a.header,
-                                                   Target::SOURCE_LIDAR));
+    obstacles_pub_.publish(guidance_ros::targetsOf(pipeline_->plannedRound(), a.header, Target::SOURCE_LIDAR));
   }
 
   std::string frame_;

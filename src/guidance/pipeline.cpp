@@ -150,7 +150,8 @@ void GuidancePipeline::setState(const VehicleState& s, double t) {
 }
 
 void GuidancePipeline::replan(const VehicleState& s, double t) {
-  const std::vector<SbbObstacle> obstacles = this->obstacles(t);
+  planned_round_ = obstacles(t);
+  const std::vector<SbbObstacle>& obstacles = planned_round_;
   SbbPlan plan;
   double length = 0.0;
   for (std::size_t i = 1; i < base_path_.size(); ++i) length += (base_path_[i] - base_path_[i - 1]).head<2>().norm();

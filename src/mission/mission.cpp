@@ -89,7 +89,9 @@ const ParamTable<CoverageArea>& CoverageArea::table() {
       .number("east_min", &P::east_min, -1e5, 1e5, "m", "western edge")
       .number("east_max", &P::east_max, -1e5, 1e5, "m", "eastern edge")
       .number("depth", &P::depth, 0.0, 1000.0, "m", "depth of the coverage")
-      .number("spacing", &P::spacing, 0.5, 1000.0, "m", "distance between the lawnmower's tracks");
+      .number("spacing", &P::spacing, 0.5, 1000.0, "m", "distance between the lawnmower's tracks")
+      .number("second_depth", &P::second_depth, 0.0, 1000.0, "m",
+              "when > 0, the lawnmower is flown back at this depth if the first pass found nothing (0: one pass)");
   return t;
 }
 
@@ -411,8 +413,15 @@ std::vector<Eigen::Vector2d> holdPath(const Eigen::Vector2d& p, double heading, 
 
 std::vector<Eigen::Vector3d> coveragePath(const CoverageArea& a) {
   if (!(a.north_max > a.north_min)) return {};
-  return guidance::lawnmower({a.north_min, a.east_min}, 0.0, a.north_max - a.north_min, a.east_max - a.east_min,
-                             a.spacing, a.depth);
+  std::vector<Eigen::Vector3d> path = guidance::lawnmower(
+      {a.north_min, a.east_min}, 0.0, a.north_max - a.north_min, a.east_max - a.east_min, a.spacing, a.depth);
+  if (a.second_depth > 0.0 && path.size() >= 2) {
+    // back along the same tracks, from the last track's start: that track is flown again while changing depth
+    const std::size_t n = path.size();
+    path.reserve(2 * n - 1);
+    for (std::size_t i = n - 1; i-- > 0;) path.emplace_back(path[i].x(), path[i].y(), a.second_depth);
+  }
+  return path;
 }
 
 UsvMission::UsvMission(const UsvMissionParams& p)
@@ -459,7 +468,12 @@ void UsvMission::onGuidance(guidance::Mode mode, double distance_to_go, double t
     hold_point_ = hold_point;
   if (phase_ != UsvPhase::Transit) return;
   if (mode == guidance::Mode::kFollowPath) following_ = true;
-  if (following_ && mode == guidance::Mode::kStationKeeping) onPathFinished(t);
+  // Station keeping ends the transit once guidance has followed it, or when the boat already holds within
+  // station_radius of the station: a refined target that moved the station a little while the USV waited there
+  // gave a path guidance never followed (its end inside the final circle of acceptance), and the mission stayed
+  // in TRANSIT to the end (evaluation run 54, 2026-12-05).
+  const bool there = pose_ && station_ && (*pose_ - *station_).norm() <= p_.station_radius;
+  if ((following_ || there) && mode == guidance::Mode::kStationKeeping) onPathFinished(t);
 }
 
 void UsvMission::onManualCommand(double t) {

@@ -45,10 +45,10 @@ constexpr double kNoFixGraceS = 60.0;  // kNoFix is an ERROR in diagnostics only
 
 const char* statusName(navigation::NavStatus s) {
   switch (s) {
-    case navigation::NavStatus::kNoFix: return "no_fix";
-    case navigation::NavStatus::kOk: return "ok";
-    case navigation::NavStatus::kFixLost: return "fix_lost";
-    case navigation::NavStatus::kNoHeading: return "no_heading";
+    case navigation::NavStatus::kNoFix: return ros_util::nav_status::kNoFix;
+    case navigation::NavStatus::kOk: return ros_util::nav_status::kOk;
+    case navigation::NavStatus::kFixLost: return ros_util::nav_status::kFixLost;
+    case navigation::NavStatus::kNoHeading: return ros_util::nav_status::kNoHeading;
   }
   return "unknown";
 }

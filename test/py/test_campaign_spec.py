@@ -143,6 +143,8 @@ def test_the_envelope_is_what_the_issue_asks():
         # planned from the band, the same for every run: the tilted fan (0.44 m above to 5.37 m below the AUV at its
         # 10 m range) centred on 3-10 m
         assert abs(c["depth"] - 4.03) < 0.01
+        # and, if that finds nothing, back at 5.54 m, where the fan sees 10 m deep 7 m off
+        assert abs(c["second_depth"] - 5.54) < 0.01
         assert math.hypot(c["north_min"], c["east_min"]) >= 20 or math.hypot(t["north"], t["east"]) >= 20
 
 

@@ -10,8 +10,10 @@ from offshore_gnc.testing import run_job
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 JOB = os.path.join(REPO, "python", "offshore_gnc", "mission_job.py")
 
-# Bounds (docs/mission.md): the sonar's horizontal localisation within 2 m; the USV never touches the buoy.
-MAX_TARGET_ERROR_M = 2.0
+# Bounds (docs/mission.md), each from the spread measured over at least five runs with a stated margin (issue 30)
+# or the goal where that is tighter. Target error: issue 32's goal, 1.0 m; 10 ROS jobs 0.40-0.62 m (2026-12-05), the
+# ROS-free mission's seeds 1-30 0.02-0.64 m (2 m until 2026-12-05). The USV never touches the buoy.
+MAX_TARGET_ERROR_M = 1.0
 MIN_CLEARANCE_M = 0.0
 MIN_PIXELS = 30  # of each colour in rviz's 3-D view (the job's Screenshots.MIN_PIXELS)
 # The USV's twin-jet DP and path following (issue 15's goals 1.0 / 3 / 1.0 m). Measured 2026-12-02 at --rate 20
@@ -21,9 +23,15 @@ MIN_PIXELS = 30  # of each colour in rviz's 3-D view (the job's Screenshots.MIN_
 # (test_stacks.cpp: the worst plus half, 1.7 m). The figure is the transit's: with the recovery's legs round the AUV
 # in it (cut by the 16 m circle of acceptance) one job's run of 2026-12-05 gave 2.69 m.
 MAX_USV_RMSE_M = 1.7
-MAX_WAIT_DRIFT_M = 3.0
-MAX_HOLD_P95_M = 2.0  # at the target, from on station (5 runs of the job: 0.76-1.21 m)
-MAX_HOLD_DRIFT_M = 25.0  # the USV holding position after the AUV is gone (docs/mission.md)
+# Waiting at the start (dynamic positioning in the field day's sea): 10 ROS jobs 0.57-0.87 m, ROS-free seeds 1-30
+# 0.57-1.36 m (2026-12-05; 3 m, issue 15's goal, until then).
+MAX_WAIT_DRIFT_M = 2.0
+# At the target, from on station: issue 32's goal 1.5 m; 10 ROS jobs 0.95-1.07 m, ROS-free seeds 1-30 0.72-1.23 m
+# (2026-12-05; 2 m until then).
+MAX_HOLD_P95_M = 1.5
+# The USV holding position after the AUV's stack died: the same dynamic-positioning hold as the wait above (about
+# 1 m, issue 30), so the wait's goal, 3 m (25 m until 2026-12-05).
+MAX_HOLD_DRIFT_M = 3.0
 MAX_NAV_RMSE_M = 1.0     # the AUV's USBL navigation against its truth, during its mission (issue 16)
 # the AUV's true cross-track from the first waypoint (thesis 0.23 m): 2026-12-04, 4 runs of the job 0.25-0.41 m (0.41
 # with five other builds on the 2 cores; the ROS-free mission's search, the same on main and this branch: 0.36-0.73 m
@@ -40,11 +48,16 @@ ACOLOR_MAX_AUV_RMSE_M = 1.2
 # 3.69-4.90 m, never closer than 3.33 m, 167-202 s from the find to RECOVERED. 6 runs (2026-12-05, the holds' integrals
 # in): hold 0.50-0.88 m, hull at the end 2.85-5.39 m (3 of 6 over 5 m, the bound then), never closer than 1.95 m.
 # The end: the bow asked 4 m off the AUV's reported position, RECOVERED with each vehicle within its station_radius
-# (1 m) of its point on its own navigation, so 4 m +- 2 m and the AUV's surface navigation error (0.3-0.7 m).
+# (1 m) of its point on its own navigation. The worst case: the report the point was planned from up to 1 m from the
+# AUV's hold point and the AUV at the end up to 1 m from it on the other side (2 m; the point is planned again only
+# once the report moved recovery_replan, 2 m), the USV's bow 1 m off its point, and the navigation errors (the AUV's
+# at the surface 0.3-0.7 m, the USV's GPS 0.3 m): 4 + 2 + 1 + 1 = 8 m. Measured: ROS jobs 2.28-5.39 m (8 runs),
+# ROS-free seeds 1-30 of the default scenario up to 6.85 m (2026-12-05; the bound was 6.7 m, which left the
+# report's 2 m out).
 # (Closing in once the AUV's report was steady rather than on its point, 2026-12-04: 6.39 m at the end in one run,
 # the hull on the AUV in the next.)
 MAX_AUV_HOLD_M = 2.0
-RECOVERY_DISTANCE_M = (1.0, 6.7)
+RECOVERY_DISTANCE_M = (1.0, 8.0)
 MIN_AUV_CLEARANCE_M = 1.0
 USV_TIMEOUT_S = 30.0  # config/mission/auv.yaml (mission::AuvMissionParams): no USV status this long, it comes up
 # holding at the surface without the USV (no USBL fixes: the DVL and the AHRS alone): 0.63-0.66 m in 2 runs of the

@@ -52,6 +52,9 @@ class ControlLoop {
 
   void onReference(const MotionReference& r, double t);
   void onState(const VehicleState& s, double t);
+  // The navigation's fix status (no position fix accepted lately): the aColor's hold drifts while lost
+  // (AcolorController::setFixLost); the Girona500 dead-reckons on its DVL and the USV on its GPS, unaffected.
+  void onFixLost(bool lost);
   ActuatorCommand update(double t);
   void setSafety(SafetyOverride o, const std::string& reason);
   SafetyOverride safety() const { return safety_; }

@@ -103,11 +103,20 @@ class AcolorController {
   void setParams(const AcolorControlParams& p);
   const AcolorControlParams& params() const { return p_; }
   std::vector<std::uint16_t> update(const VehicleState& s, const MotionReference& r);  // PWM per channel
+  // The navigation has accepted no position fix lately (it dead-reckons). The aColor has no speed sensor and its
+  // navigation takes no speed from a hold, so holding a point its estimate then stands still at (the last fix plus
+  // the current): the position PIDs would push, their integral winding up, against an error that never changes
+  // (evaluation run 4, 2026-12-05: 26 m at full hold thrust in 54 s without fixes, into the USV's way). While lost,
+  // a hold drifts (surge and sway neutral, counted hold_without_fix) and resumes from rest at the next fix: an
+  // integral built on a frozen estimate is no measure of the push needed (kept instead, it drove the aColor on at
+  // its bound while its estimate sat on the point: evaluation run 64). docs/guidance-control.md has the figures.
+  void setFixLost(bool lost) { fix_lost_ = lost; }
   const Counters& counters() const { return counters_; }
   static std::uint16_t pwm(double normalised);  // -1..1 -> 1100..1900 us, 1500 neutral
 
  private:
   AcolorControlParams p_;
+  bool fix_lost_ = false;
   Pid yaw_, heave_, north_, east_;
   Counters counters_;
 };

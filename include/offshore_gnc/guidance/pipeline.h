@@ -72,6 +72,10 @@ class GuidancePipeline {
   const SbbPlan& plan() const { return plan_; }
   // What is planned round at time t: the seen obstacles (fresh, or kept out of view), and the known ones.
   std::vector<SbbObstacle> obstacles(double t) const;
+  // What the last plan went round (obstacles(t) at the last replan: what guidance/obstacles publishes).
+  const std::vector<SbbObstacle>& plannedRound() const { return planned_round_; }
+  // Of the seen obstacles at the last LiDAR frame, those kept from memory (out of the sensor's view).
+  int remembered() const { return seen_.remembered(); }
   const Counters& counters() const { return counters_; }            // stale_odom, bad_obstacles, ...
   const Counters& losCounters() const { return los_.counters(); }   // nan_pose, bad_path, ...
 
@@ -88,6 +92,7 @@ class GuidancePipeline {
   ObstacleMemory seen_;
   std::vector<SbbObstacle> known_;
   SbbPlan plan_;  // the last plan: its boxes' sides are kept while safe
+  std::vector<SbbObstacle> planned_round_;
   VehicleState state_;
   double state_time_ = 0.0;
   bool have_state_ = false, new_path_ = false, replan_ = false, planned_changed_ = false, boxes_changed_ = false;

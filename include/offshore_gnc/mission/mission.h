@@ -23,9 +23,13 @@ namespace offshore_gnc {
 namespace mission {
 
 // The AUV's search area as a north/east rectangle; coveragePath() lays guidance::lawnmower over it (legs along
-// north, `spacing` apart to the east, from the south-west corner). Empty for a degenerate rectangle.
+// north, `spacing` apart to the east, from the south-west corner) at `depth`, then, when `second_depth` > 0, flies it
+// back at that depth: one tilted sonar fan cannot see a whole deep target band (docs/mission.md "Coverage"). The
+// search ends at the first confirmed find, so the second pass is flown only when the first found nothing. Empty for
+// a degenerate rectangle.
 struct CoverageArea {
   double north_min = 0, north_max = 0, east_min = 0, east_max = 0, depth = 0, spacing = 5.0;
+  double second_depth = 0.0;  // 0: one pass
   static const ParamTable<CoverageArea>& table();
   void validate() const;  // also refuses an empty rectangle, naming it
 };

@@ -126,5 +126,11 @@ inline void fillReference(const MotionReference& r, GuidanceStatus& g) {
   g.reference_point.z = r.point.z();
 }
 
+// /auv/navigation/status (std_msgs/String, latched): the AUV navigation's state (navigation::NavStatus), written by
+// the AuvNavigation nodelet; the aColor's Control nodelet lets its hold drift while the fix is lost.
+namespace nav_status {
+constexpr char kNoFix[] = "no_fix", kOk[] = "ok", kFixLost[] = "fix_lost", kNoHeading[] = "no_heading";
+}  // namespace nav_status
+
 }  // namespace ros_util
 }  // namespace offshore_gnc

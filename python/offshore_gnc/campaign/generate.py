@@ -151,18 +151,32 @@ def _environment(draw, spec, model):
 
 # The AUV's sonar (sim/sensors.h SonarConfig): 10 m range, a 35-degree vertical fan on a head tilted 15 degrees down.
 SONAR_RANGE_M, SONAR_VERTICAL_DEG, SONAR_TILT_DEG = 10.0, 35.0, 15.0
+# How far off (horizontally) a pass must see the band's deep end: 7 m, short of the sonar's 10 m, since a target at
+# the fan's edge at full range is seen in few sweeps, if at all (envelope seed 1000: from 4.03 m every target deeper
+# than 9.2 m was missed although the fan reaches 9.40 m at 10 m).
+SURVEY_REACH_M = 7.0
 
 
-def survey_depth(draw, spec):
-    """'plan': the depth from which the sonar's fan, at its full range, is centred on the campaign's target depth band
-    (a team knows the band, not where in it the target lies). The fan reaches from R sin(17.5 - 15 deg) = 0.44 m
-    above the AUV to R sin(17.5 + 15 deg) = 5.37 m below it: the plan surveys 2.47 m above the band's middle."""
+def _fan_angles():
+    """The fan's upper and lower edges below the horizontal (the upper one is above it: negative) [rad]."""
+    half, tilt = math.radians(SONAR_VERTICAL_DEG / 2), math.radians(SONAR_TILT_DEG)
+    return tilt - half, tilt + half
+
+
+def survey_depths(draw, spec):
+    """(depth, second_depth or 0). A number: that depth, one pass. 'plan' (a team knows the band, not where in it the
+    target lies): the first pass where the fan at the sonar's full range is centred on the band (0.44 m above to
+    5.37 m below the AUV: 2.47 m above the band's middle); when that pass cannot see the band's deep end
+    SURVEY_REACH_M off, a second pass from which it can (flown only if the first found nothing)."""
     s = spec["auv"]["survey_depth_m"]
     if s != "plan":
-        return draw.uniform("auv.survey_depth_m", s)
-    half, tilt = math.radians(SONAR_VERTICAL_DEG / 2), math.radians(SONAR_TILT_DEG)
-    above, below = SONAR_RANGE_M * math.sin(half - tilt), SONAR_RANGE_M * math.sin(half + tilt)
-    return max(0.5, sum(spec["target"]["depth_m"]) / 2 - (below - above) / 2)
+        return draw.uniform("auv.survey_depth_m", s), 0.0
+    lo, hi = spec["target"]["depth_m"]
+    upper, lower = _fan_angles()
+    above, below = -SONAR_RANGE_M * math.sin(upper), SONAR_RANGE_M * math.sin(lower)
+    first = max(0.5, (lo + hi) / 2 - (below - above) / 2)
+    reach_below = SURVEY_REACH_M * math.tan(lower)
+    return first, (hi - reach_below if first + reach_below < hi else 0.0)
 
 
 def _target(d, spec, area):
@@ -181,7 +195,14 @@ def _auv(d, spec, area):
     return {"start": {"north": _r(offset * math.cos(bearing)), "east": _r(offset * math.sin(bearing)),
                       "depth": _r(d.uniform("auv.start_depth_m", a["start_depth_m"])),
                       "yaw_deg": _r(math.degrees(bearing), 1)},
-            "coverage": dict(area, depth=_r(survey_depth(d, spec)))}
+            "coverage": _coverage(area, *survey_depths(d, spec))}
+
+
+def _coverage(area, depth, second_depth):
+    c = dict(area, depth=_r(depth))
+    if second_depth > 0:
+        c["second_depth"] = _r(second_depth)
+    return c
 
 
 def generate(spec, index):

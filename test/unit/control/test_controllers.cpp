@@ -154,6 +154,34 @@ TEST(Acolor, HoldsAPointWithItsVectoredThrustersOnlyWithGains) {
   EXPECT_EQ(dp.update(s, follow(kPi / 2, 0.5))[5], 1500);  // following: no sway
 }
 
+TEST(Acolor, AHoldDriftsWhileTheNavigationHasNoFixAndResumesFromRest) {
+  // Without a speed sensor its estimate stands still between fixes: pushing on it would wind the integral up
+  // against an error that never changes (evaluation run 4: 26 m in 54 s into the USV's way).
+  VehicleState s;
+  s.position = Eigen::Vector3d(0, 0, 2);
+  s.yaw = kPi / 2;
+  AcolorControlParams p;
+  p.hold = {0.1, 0.05, 0.0, 0.6, 0.3};
+  AcolorController dp(p);
+  for (int i = 0; i < 50; ++i) dp.update(s, holdAt(3, 0, kPi / 2));  // 5 s of integral on a 3 m error
+  const auto wound = dp.update(s, holdAt(3, 0, kPi / 2))[5];
+  EXPECT_LT(wound, AcolorController::pwm(-0.3));  // beyond the proportional part
+  dp.setFixLost(true);
+  auto ch = dp.update(s, holdAt(3, 0, kPi / 2, 3.0));
+  EXPECT_EQ(ch[4], 1500);  // surge and sway neutral: it drifts
+  EXPECT_EQ(ch[5], 1500);
+  EXPECT_EQ(ch[2], 1800);  // its depth still held: 1 m too shallow -> down
+  EXPECT_EQ(dp.counters().get("hold_without_fix"), 1u);
+  dp.setFixLost(false);
+  // it resumes from rest: the integral built before is dropped
+  AcolorController fresh(p);
+  const auto resumed = dp.update(s, holdAt(3, 0, kPi / 2))[5];
+  EXPECT_EQ(resumed, fresh.update(s, holdAt(3, 0, kPi / 2))[5]);
+  EXPECT_GT(resumed, wound);
+  dp.setFixLost(true);  // following a path is not a hold: its surge is guidance's, fix or none
+  EXPECT_EQ(dp.update(s, follow(kPi / 2, 0.5))[4], AcolorController::pwm(p.surge_command_for(0.5)));
+}
+
 TEST(Girona500, HoldingTurnsTheBowIntoALateralDemandItsSwayThrusterCannotMeet) {
   // Beam on to a cross current the 40 N sway thruster gives up (0.3 m/s needs about 46 N): holding, the heading
   // turns from guidance's toward the demand until the thruster's part of it fits (hold_crab); following, it keeps

@@ -105,6 +105,24 @@ TEST(UsvMission, TransitToStandoffThenArrive) {
   EXPECT_FALSE(m.finished());  // the mission ends with the AUV recovered
 }
 
+TEST(UsvMission, ARefinedTargetWhileHoldingAtTheStationStillArrives) {
+  UsvMission m;  // stand-off 3 m, station_radius 1 m
+  m.onPose({0, 0}, 0.0, 0.0);
+  ASSERT_TRUE(m.onTarget({0, 48}, 5.0));
+  m.onGuidance(guidance::Mode::kStationKeeping, 0.0, 5.1, Eigen::Vector2d(0, 0));  // the old hold, for a step
+  EXPECT_EQ(m.phase(), UsvPhase::Transit);
+  m.onGuidance(guidance::Mode::kFollowPath, 40.0, 6.0, kNoPoint);
+  m.onPose({0, 44}, kPi / 2, 59.0);  // nearly there when the AUV's refined target comes, 1.5 m to the side
+  ASSERT_TRUE(m.onTarget({1.5, 48}, 59.5));  // the station 1.3 m on
+  EXPECT_EQ(m.phase(), UsvPhase::Transit);
+  // the new path's end lies within guidance's final circle: it holds at once, never following a leg
+  m.onGuidance(guidance::Mode::kStationKeeping, 0.0, 59.6, *m.stationPoint());
+  EXPECT_EQ(m.phase(), UsvPhase::Transit);  // not there yet
+  m.onPose({0.4, 45.0}, kPi / 2, 60.0);
+  m.onGuidance(guidance::Mode::kStationKeeping, 0.0, 60.0, *m.stationPoint());
+  EXPECT_EQ(m.phase(), UsvPhase::Arrived);
+}
+
 TEST(UsvMission, OnStationOnceWithinItsRadiusOfThePointGuidanceHolds) {
   UsvMission m;  // station_radius 1 m
   m.onPose({0, 0}, 0.0, 0.0);
@@ -182,6 +200,23 @@ TEST(CoveragePath, Lawnmower) {
   EXPECT_TRUE(coveragePath({60, 20, -10, 10, 3, 5}).empty());
   EXPECT_TRUE(coveragePath({20, 60, -10, 10, NAN, 5}).empty());
   EXPECT_TRUE(coveragePath({20, 60, 10, -10, 3, 5}).empty());
+}
+
+TEST(CoveragePath, FliesTheLawnmowerBackAtTheSecondDepth) {
+  CoverageArea a{20, 60, -10, 10, 4, 5};
+  a.second_depth = 5.5;
+  const auto p = coveragePath(a);
+  ASSERT_EQ(p.size(), 19u);  // ten waypoints out, nine back from the last track's start
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(p[i].z(), 4.0) << i;
+  EXPECT_EQ(p[9], Eigen::Vector3d(60, 10, 4));
+  EXPECT_EQ(p[10], Eigen::Vector3d(20, 10, 5.5));  // the last track again, changing depth
+  for (int i = 10; i < 19; ++i) {
+    EXPECT_EQ(p[i].z(), 5.5) << i;
+    EXPECT_EQ(p[i].head<2>(), p[18 - i].head<2>()) << i;  // the same tracks in reverse
+  }
+  EXPECT_EQ(p.back(), Eigen::Vector3d(20, -10, 5.5));  // ends where the first pass began
+  a.second_depth = 0.0;
+  EXPECT_EQ(coveragePath(a).size(), 10u);
 }
 
 TEST(HoldPath, EndsAtThePointAlongTheHeading) {
