@@ -658,7 +658,6 @@ Eigen::Vector2d UsvMission::recoveryAxis(const Eigen::Vector2d& auv) {
 }
 
 void UsvMission::planRecovery(double t) {
-  const Eigen::Vector2d axis_before = recovery_axis_;
   recovery_axis_ = recoveryAxis(auv_pos_);
   const Eigen::Vector2d auv = auv_pos_, up = recovery_axis_, u = *pose_;
   const double off = p_.recovery_distance + hull_.ahead;  // the reference point's distance: the bow at recovery_distance
@@ -674,12 +673,7 @@ void UsvMission::planRecovery(double t) {
   // run-in moved with it (a Girona500 that could not hold against 0.5 m/s drifted onto the USV holding downstream of
   // it and touched the hull; an aColor swinging +-3 m about its point came within 0.3 m of it).
   const Eigen::Vector2d from_point = u - recovery_point_;
-  // Closing in is dynamic positioning's straight run: only from this axis's run-in. An axis turned while closing in
-  // (an obstacle first seen from the run-in) puts the point on another side: back to guidance and the new run-in
-  // (kept alongside, the USV ran 28 m straight to it over a buoy: evaluation seed 3000, run 9).
-  const bool same_side = alongside_ && axis_before.allFinite() && (axis_before - up).norm() < 1e-6 &&
-                         from_point.norm() <= p_.waypoint_spacing + p_.recovery_distance;
-  alongside_ = auvHeld(t) && (same_side || (from_point.dot(up) <= 0.0 && from_point.norm() <= p_.waypoint_spacing));
+  alongside_ = auvHeld(t) && (alongside_ || (from_point.dot(up) <= 0.0 && from_point.norm() <= p_.waypoint_spacing));
   if (alongside_) {
     station_ = recovery_point_;
     setPath(holdPath(recovery_point_, heading));

@@ -126,8 +126,8 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
   s.auv.depth = r.number(a["start"], "auv.start", "depth", 0.0, floor);
   s.auv.yaw = deg2rad(r.opt(a["start"], "auv.start", "yaw_deg", 0.0, -360.0, 360.0));
   if (const YAML::Node cov = a["coverage"]) {  // read by the AUV mission; checked here so typos surface early
-    r.keys(cov, "auv.coverage", {"north_min", "north_max", "east_min", "east_max", "depth", "spacing",
-                                             "second_depth"});
+    r.keys(cov, "auv.coverage",
+           {"north_min", "north_max", "east_min", "east_max", "depth", "spacing", "second_depth"});
     const double n0 = r.number(cov, "auv.coverage", "north_min", -kMaxCoord, kMaxCoord);
     r.number(cov, "auv.coverage", "north_max", n0 + 1e-3, kMaxCoord);
     const double e0 = r.number(cov, "auv.coverage", "east_min", -kMaxCoord, kMaxCoord);

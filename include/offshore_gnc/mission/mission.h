@@ -24,7 +24,7 @@ namespace mission {
 
 // The AUV's search area as a north/east rectangle; coveragePath() lays guidance::lawnmower over it (legs along
 // north, `spacing` apart to the east, from the south-west corner) at `depth`, then, when `second_depth` > 0, flies it
-// back at that depth: one tilted sonar fan cannot see a whole deep target band (docs/mission.md "Coverage"). The
+// back at that depth: one tilted sonar fan cannot see a whole deep target band (docs/mission.md, AUV). The
 // search ends at the first confirmed find, so the second pass is flown only when the first found nothing. Empty for
 // a degenerate rectangle.
 struct CoverageArea {

@@ -526,32 +526,6 @@ TEST(UsvMission, RecoversTheSurfacedAuvDownstreamBowOn) {
   EXPECT_DOUBLE_EQ(m.recoveredAt(), 226.0);
 }
 
-// At the run-in a buoy is seen under the close-in: the axis turns, and the USV goes to the new side's run-in through
-// guidance, not straight to the new recovery point by dynamic positioning (evaluation seed 3000, run 9: 28 m over a
-// buoy).
-TEST(UsvMission, AnAxisTurnedAtTheRunInGoesToTheNewRunInThroughGuidance) {
-  UsvMission m;
-  arrived(m);
-  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
-  ASSERT_EQ(m.phase(), UsvPhase::Recovery);
-  (void)m.takePath();  // to the run-in (50, 19.3), downstream
-  for (double t = 161.5; t < 200.0; t += 0.5) m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, t);
-  guidance::SbbObstacle buoy;
-  buoy.id = 7;
-  buoy.origin = {50, 14};
-  buoy.length = buoy.width = 0.6;
-  m.setObstacles({buoy});
-  m.onPose({50, 18}, -kPi / 2, 200.0);
-  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 200.0);  // at the run-in, the AUV held: close in, but ...
-  const Eigen::Vector2d off = m.recoveryPoint() - Eigen::Vector2d(50, 0);
-  EXPECT_GT(std::acos(off.normalized().dot(Eigen::Vector2d(0, 1))), deg2rad(20.0));  // ... the axis turned
-  auto p = m.takePath();
-  ASSERT_TRUE(p);
-  EXPECT_LT((p->back() - (m.recoveryPoint() + 10.0 * off.normalized())).norm(), 1e-9);  // the new run-in
-  EXPECT_GE(p->size(), 2u);
-  EXPECT_LT((p->front() - Eigen::Vector2d(50, 18)).norm(), 1e-9);  // from where the USV is: guidance's path
-}
-
 // A buoy 14 m downstream of the AUV lies under the close-in: dynamic positioning's straight run from the run-in plans
 // round nothing, so the mission turns the axis (30 degrees, to the USV's side) until the hull's whole run keeps
 // recovery_clearance from it; the AUV's own keep-clear box is not an obstacle of this kind.
