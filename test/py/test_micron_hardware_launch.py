@@ -62,7 +62,7 @@ def assert_fails_naming(ms, proc, name, *needles):
         pytest.fail("roslaunch did not stop although a device is missing:\n" + log(ms, name)[-3000:])
     text = log(ms, name)
     for n in needles:
-        assert n in text, "%r not in the launch output:\n%s" % (n, text[-4000:])
+        assert n in text, "%r not in the launch output (%d chars):\n%s" % (n, len(text), text[-6000:])
 
 
 @pytest.fixture
@@ -90,8 +90,10 @@ def test_acolor_without_the_sonar_fails_naming_it(ms):
     port = free_udp_port()
     peer = FakeArduSub(port)
     try:
+        # the autopilot's startup timeout well past the sonar's device_wait: on a loaded machine the bridge must not
+        # be the first to stop the launch (a CI run saw the launch end without the Micron's message)
         p = launch(ms, "acolor_nosonar", vehicle_model="acolor", sonar_port="/dev/ttyNO_MICRON",
-                   mavlink_url="udpin:127.0.0.1:%d" % port, startup_timeout=STARTUP)
+                   mavlink_url="udpin:127.0.0.1:%d" % port, startup_timeout=60.0)
         assert_fails_naming(ms, p, "acolor_nosonar", "cannot open serial device '/dev/ttyNO_MICRON'",
                             "REQUIRED process [auv/micron")
     finally:
