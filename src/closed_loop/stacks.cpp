@@ -464,8 +464,6 @@ void AuvStack::step() {
   if (step_ % guidance_every_ == 0 && guidance_.update(t, guidance_every_ * cfg_.sim.dt, last_)) {
     guided_ = true;
     control_.onReference(last_.reference, t);
-    if (usbl_ && last_.reference.mode == ReferenceMode::kFollow)  // a hold demands no speed (auv_navigator.h)
-      usbl_->commandedSurge(t, last_.reference.surge);  // /auv/guidance/status desired_surge
     if (cfg_.mission_enabled) {
       mission_.onGuidance(last_.los.mode, t);
       if (auto p = mission_.takePath()) guidance_.setPath(*p);
@@ -479,6 +477,7 @@ void AuvStack::step() {
   if (step_ % control_every_ == 0) {
     sup.heard(safety::Source::kCommand, t);
     command_ = control_.update(t);
+    if (usbl_) usbl_->commandedVelocity(t, command_.water_velocity);  // /auv/commanded_velocity
     if (cfg_.model == "girona500") {
       const auto& sp = command_.thrusters.alloc.setpoint;
       sim_.setThrusters(std::vector<double>(sp.data(), sp.data() + sp.size()));

@@ -79,7 +79,6 @@ void UsblNavigation::dvl(double t, const Eigen::Vector3d& v_body) {
   if (cfg_.params.use_dvl) nav_.dvl(t, v_body);
 }
 
-void UsblNavigation::commandedSurge(double t, double surge) { nav_.commandedSpeed(t, surge); }
 
 void UsblNavigation::exchange(double t, const usbl::Pose& usv, const Eigen::Vector3d& auv_ned) {
   std::vector<usbl::StreamDecoder::Event> events;

@@ -114,8 +114,13 @@ ActuatorCommand ControlLoop::update(double t) {
     why_ = std::string("safety ") + safetyOverrideName(safety_) + ": " + safety_reason_;
   }
   if (usv_) out.joystick = usv_->update(state_, r);
-  else if (g500_) out.thrusters = g500_->update(state_, r);
-  else out.rc = acolor_->update(state_, r);
+  else if (g500_) {
+    out.thrusters = g500_->update(state_, r);
+    out.water_velocity = g500_->waterVelocity();
+  } else {
+    out.rc = acolor_->update(state_, r);
+    out.water_velocity = acolor_->waterVelocity();
+  }
   return out;
 }
 

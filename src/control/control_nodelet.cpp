@@ -4,10 +4,13 @@
 //                         the priority of manual input)
 //   vehicle: girona500 -> ThrusterSetpoints on thruster_setpoints (T^+ allocation, saturation)
 //   vehicle: acolor    -> RcChannels on rc_channels (PWM 1100-1900 us)
+// The AUVs also publish commanded_velocity (TwistStamped in the vehicle's base frame, FLU): the velocity through the water
+// their command gives, the navigation's speed without a DVL (ActuatorCommand::water_velocity).
 // The vehicle's safety supervisor (safety/state) overrides guidance: hold, neutral or surface until it clears.
 // Thin: parameters, message conversion, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <dynamic_reconfigure/server.h>
+#include <geometry_msgs/TwistStamped.h>
 #include <nodelet/nodelet.h>
 #include <offshore_gnc/ControlConfig.h>
 #include <offshore_gnc/GuidanceStatus.h>
@@ -50,6 +53,9 @@ class ControlNodelet : public nodelet::Nodelet {
         ros_util::readParams(p, control::AcolorControlParams::table(), cp.acolor);
         rc_pub_ = nh.advertise<RcChannels>("rc_channels", 10);
         nav_status_sub_ = nh.subscribe("navigation/status", 1, &ControlNodelet::onNavStatus, this);  // latched
+      }
+      if (cp.vehicle != "usv") {
+        water_pub_ = nh.advertise<geometry_msgs::TwistStamped>("commanded_velocity", 10);
       }
       loop_ = std::make_unique<control::ControlLoop>(cp);
     } catch (const ConfigError& e) {
@@ -162,6 +168,14 @@ class ControlNodelet : public nodelet::Nodelet {
       m.channels = c.rc;
       rc_pub_.publish(m);
     }
+    if (water_pub_) {
+      geometry_msgs::TwistStamped w;
+      w.header.stamp = now;
+      // frame_id left empty: the vehicle's base frame, whatever the navigation calls it
+      w.twist.linear.x = c.water_velocity.x();
+      w.twist.linear.y = -c.water_velocity.y();  // FRD sway -> FLU
+      water_pub_.publish(w);
+    }
   }
 
   // The supervisor's action -> what control does: warn asks nothing; abort is a surface (the USV: neutral).
@@ -186,7 +200,7 @@ class ControlNodelet : public nodelet::Nodelet {
   boost::recursive_mutex reconf_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<ControlConfig>> reconfigure_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
-  ros::Publisher joy_pub_, thr_pub_, rc_pub_;
+  ros::Publisher joy_pub_, thr_pub_, rc_pub_, water_pub_;
   ros::Subscriber status_sub_, odom_sub_, safety_sub_, nav_status_sub_;
   ros::Timer timer_;
 };

@@ -169,9 +169,8 @@ double acolorSurgeCommand(const models::AuvModel& model, double speed) {
   return hi;
 }
 
-AcolorControlParams::AcolorControlParams() {
-  auto model = std::make_shared<const models::AuvModel>(models::AuvParams::aColor());
-  surge_command_for = [model](double speed) { return acolorSurgeCommand(*model, speed); };
+AcolorControlParams::AcolorControlParams() : model(std::make_shared<const models::AuvModel>(models::AuvParams::aColor())) {
+  surge_command_for = [m = model](double speed) { return acolorSurgeCommand(*m, speed); };
 }
 
 const ParamTable<AcolorControlParams>& AcolorControlParams::table() {
@@ -213,6 +212,23 @@ std::uint16_t AcolorController::pwm(double normalised) {
 }
 
 std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const MotionReference& r) {
+  std::vector<std::uint16_t> ch = command(s, r);
+  predictWater(ch);
+  return ch;
+}
+
+void AcolorController::predictWater(const std::vector<std::uint16_t>& ch) {
+  if (!p_.model) return;
+  const models::AuvModel& m = *p_.model;
+  auto axis = [&](int channel) { return (ch[channel - 1] - 1500.0) / 400.0; };
+  const Eigen::VectorXd cmd = models::mixAxes(
+      m.tcm(), Eigen::Vector4d(axis(p_.channel_surge), axis(p_.channel_sway), axis(p_.channel_heave), axis(p_.channel_yaw)));
+  Eigen::VectorXd f(m.thrusters());
+  for (int i = 0; i < m.thrusters(); ++i) f(i) = m.thrust(i, cmd(i));
+  water_ = m.waterVelocityStep(water_, (m.tcm() * f).head<2>(), p_.dt);
+}
+
+std::vector<std::uint16_t> AcolorController::command(const VehicleState& s, const MotionReference& r) {
   std::vector<std::uint16_t> ch(p_.num_channels, 1500);
   if (!stateFinite(s) || !r.valid() || (r.mode != ReferenceMode::kIdle && !std::isfinite(r.depth))) {
     counters_.increment(stateFinite(s) ? "bad_reference" : "nan_state");
@@ -256,8 +272,8 @@ Girona500ControlParams::Girona500ControlParams() {
     const auto& t = g.thrusters[i];
     max_thrust[i] = std::min(std::abs(t.curve_thrust.front()), std::abs(t.curve_thrust.back()));
   }
-  auto model = std::make_shared<const models::AuvModel>(g);
-  command_for = [model](int i, double f) { return model->commandFor(i, f); };
+  model = std::make_shared<const models::AuvModel>(g);
+  command_for = [m = model](int i, double f) { return m->commandFor(i, f); };
 }
 
 const ParamTable<Girona500ControlParams>& Girona500ControlParams::table() {
@@ -302,6 +318,15 @@ void Girona500Controller::setParams(const Girona500ControlParams& p) {
 }
 
 Girona500Out Girona500Controller::update(const VehicleState& s, const MotionReference& r) {
+  Girona500Out out = command(s, r);
+  if (p_.model && out.alloc.thrust.size() == p_.tcm.cols())
+    water_ = p_.model->waterVelocityStep(water_, (p_.tcm * out.alloc.thrust).head<2>(), p_.dt);
+  else
+    water_ = p_.model ? p_.model->waterVelocityStep(water_, Eigen::Vector2d::Zero(), p_.dt) : Eigen::Vector2d::Zero();
+  return out;
+}
+
+Girona500Out Girona500Controller::command(const VehicleState& s, const MotionReference& r) {
   Girona500Out out;
   const bool ok = stateFinite(s) && r.valid() && (r.mode == ReferenceMode::kIdle || std::isfinite(r.depth));
   if (!ok || r.mode == ReferenceMode::kIdle) {

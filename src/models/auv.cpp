@@ -24,6 +24,15 @@ Thruster makeThruster(const char* name, Eigen::Vector3d pos, Eigen::Vector3d dir
 }
 }  // namespace
 
+Eigen::VectorXd mixAxes(const Eigen::MatrixXd& tcm, const Eigen::Vector4d& axes) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(tcm.cols());
+  for (int axis = 0; axis < 4; ++axis) {
+    const double scale = tcm.row(axis).cwiseAbs().maxCoeff();
+    if (scale > 1e-9) out += (axes[axis] / scale) * tcm.row(axis).transpose();
+  }
+  return out.cwiseMax(-1.0).cwiseMin(1.0);
+}
+
 AuvParams AuvParams::girona500() {
   AuvParams p;
   const double ly1 = 0.2432, ly2 = 0.2432;  // Table 3.3
@@ -127,6 +136,14 @@ AuvModel::AuvModel(const AuvParams& p) : p_(p) {
     curves_.emplace_back("thrusters[" + std::to_string(i) + "]", p_.thrusters[i].curve_command,
                          p_.thrusters[i].curve_thrust);
   reset(VehicleState());
+}
+
+Eigen::Vector2d AuvModel::waterVelocityStep(const Eigen::Vector2d& v, const Eigen::Vector2d& force, double dt) const {
+  auto step = [dt](double u, double f, double mass, double lin, double quad) {
+    return (u + dt * f / mass) / (1.0 + dt * (std::abs(lin) + std::abs(quad) * std::abs(u)) / mass);
+  };
+  return {step(v.x(), force.x(), p_.mass - p_.X_udot, p_.X_u, p_.X_uu),
+          step(v.y(), force.y(), p_.mass - p_.Y_vdot, p_.Y_v, p_.Y_vv)};
 }
 
 double AuvModel::thrust(int i, double command) const {

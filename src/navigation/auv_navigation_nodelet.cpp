@@ -1,16 +1,18 @@
 // AuvNavigation: the AUV's navigation filter (navigation::AuvNavigator) in the AUV's master. USBL fixes
 // (/auv/usbl/fix, placed on the USV and relayed, stamped when taken), depth from /auv/pressure, yaw and yaw rate
-// from the AHRS (/auv/imu), and the DVL (/auv/dvl, Girona500) or the commanded surge (/auv/guidance/status,
-// aColor) -> /auv/odom + TF map -> auv/base_link at a fixed rate on the ROS (simulation) clock, once the first fix
-// has initialised the filter and while it has a heading (no_heading: its dead reckoning has stopped, so it
-// publishes no estimate rather than a frozen one, and the safety supervisor's navigation rule sees the silence); /auv/navigation/status (latched),
-// the QUALITY_OK fixes the filter refused (gated or too old) on /auv/navigation/refused_fixes, and diagnostics. Replaces the simulator's
-// INS-like /auv/odom with `navigation:=usbl`. Thin: parameters, message conversion, publishing.
+// from the AHRS (/auv/imu), and the DVL (/auv/dvl, Girona500) or the velocity through the water the commands give
+// (/auv/commanded_velocity from Control: the aColor, a Girona500 whose DVL is silent) -> /auv/odom + TF
+// map -> auv/base_link at a fixed rate on the ROS (simulation) clock, once the first fix has initialised the
+// filter and while it has a heading (no_heading: its dead reckoning has stopped, so it publishes no estimate rather
+// than a frozen one, and the safety supervisor's navigation rule sees the silence); /auv/navigation/status
+// (latched), the QUALITY_OK fixes the filter refused (gated or too old) on /auv/navigation/refused_fixes, and
+// diagnostics. Replaces the simulator's INS-like /auv/odom with `navigation:=usbl`. Thin: parameters, message
+// conversion, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/TwistWithCovarianceStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
-#include <offshore_gnc/GuidanceStatus.h>
+#include <geometry_msgs/TwistStamped.h>
 #include <offshore_gnc/UsblFix.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
@@ -99,8 +101,8 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     pressure_sub_ = nh.subscribe("/auv/pressure", 20, &AuvNavigationNodelet::onPressure, this);
     imu_sub_ = nh.subscribe("/auv/imu", 100, &AuvNavigationNodelet::onImu, this);
     if (params_.use_dvl) dvl_sub_ = nh.subscribe("/auv/dvl", 20, &AuvNavigationNodelet::onDvl, this);
-    // the commanded surge always: the filter uses it only while no DVL sample is fresh (dvl_timeout)
-    guidance_sub_ = nh.subscribe("/auv/guidance/status", 10, &AuvNavigationNodelet::onGuidance, this);
+    // the commands' velocity always: the filter uses it only while no DVL sample is fresh (dvl_timeout)
+    command_sub_ = nh.subscribe("/auv/commanded_velocity", 10, &AuvNavigationNodelet::onCommand, this);
 
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh, getName());
     updater_->setHardwareID("auv_navigation");
@@ -108,7 +110,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     diag_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
     timer_ = nh.createTimer(ros::Duration(1.0 / params_.rate), &AuvNavigationNodelet::onTimer, this);
     NODELET_INFO("AUV navigation at %.1f Hz, velocity from %s; no /auv/odom until the first USBL fix", params_.rate,
-                 params_.use_dvl ? "the DVL (/auv/dvl)" : "the commanded surge (/auv/guidance/status)");
+                 params_.use_dvl ? "the DVL (/auv/dvl)" : "the commands (/auv/commanded_velocity)");
   }
 
   // ---- inputs ----
@@ -178,14 +180,12 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     nav_->dvl(m->header.stamp.toSec(), Eigen::Vector3d(v.x, -v.y, -v.z));  // FLU -> FRD
   }
 
-  void onGuidance(const GuidanceStatus::ConstPtr& m) {
-    // the command is in force from now: guidance stamps its status with the pose it used, which is old
-    // whenever the navigation itself is (no fix yet, a gap)
+  void onCommand(const geometry_msgs::TwistStamped::ConstPtr& m) {
+    // the command is in force from now (control stamps it when sent; the simulated clock may run ahead of it)
     const ros::Time t = ros::Time::now();
     if (t.isZero()) return;  // the clock has not started
-    if (m->reference_mode != GuidanceStatus::REFERENCE_FOLLOW) return;  // a hold demands no speed (auv_navigator.h)
     std::lock_guard<std::mutex> l(mutex_);
-    nav_->commandedSpeed(t.toSec(), m->desired_surge);  // a NaN surge is refused and counted by the core
+    nav_->commandedVelocity(t.toSec(), m->twist.linear.x, -m->twist.linear.y);  // FLU -> FRD; NaN refused, counted
   }
 
   // ---- output ----
@@ -301,7 +301,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
   navigation::NavStatus published_status_ = navigation::NavStatus::kNoFix;  // on /auv/navigation/status
   ros::Time start_, last_stamp_;
   ros::Publisher odom_pub_, status_pub_, refused_pub_;
-  ros::Subscriber fix_sub_, pressure_sub_, imu_sub_, dvl_sub_, guidance_sub_;
+  ros::Subscriber fix_sub_, pressure_sub_, imu_sub_, dvl_sub_, command_sub_;
   tf2_ros::TransformBroadcaster tf_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::WallTimer diag_timer_;

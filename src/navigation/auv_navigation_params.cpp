@@ -9,7 +9,7 @@ const ParamTable<AuvNavigationParams>& AuvNavigationParams::table() {
   using P = AuvNavigationParams;
   static const ParamTable<P> t = ParamTable<P>()
       .number("rate", &P::rate, 0.1, 100.0, "Hz", "/auv/odom and its TF")
-      .flag("use_dvl", &P::use_dvl, "velocity over ground from /auv/dvl; false: the commanded surge (no DVL)")
+      .flag("use_dvl", &P::use_dvl, "velocity over ground from /auv/dvl; false: the commands' velocity (no DVL)")
       .number("fix_min_sigma", &P::fix_min_sigma, 0.001, 100.0, "m",
               "a USBL fix's position sigma at least this (the USV GPS's error and its pose at the fix time)")
       .number("fix_angle_sigma", &P::fix_angle_sigma, 0.0, 0.5, "rad", "and at least the slant range times this")

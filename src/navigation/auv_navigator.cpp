@@ -1,7 +1,7 @@
 // AUV navigation: Kalman filter on [position; velocity; current] in NED with delayed USBL fixes applied at their
 // stamp by rolling back over a short history of inputs and filter states and replaying the later inputs.
 //
-// The current: the commanded surge is a speed through the water, the DVL and the fixes see the motion over
+// The current: the commands' velocity is a speed through the water, the DVL and the fixes see the motion over
 // ground. With a DVL the current has no measurement and stays apart (no cross-covariance ever forms), so the
 // Girona500's estimate is the same as without it; on commands it is what the fixes correct the model with
 // (a 0.2 m/s cross current otherwise biased the aColor's velocity towards the water-relative one).
@@ -54,7 +54,7 @@ const ParamTable<AuvNavigatorConfig>& AuvNavigatorConfig::table() {
       .number("dvl_sigma", &P::dvl_sigma, 1e-4, 10.0, "m/s", "DVL velocity noise, each axis")
       .number("depth_sigma", &P::depth_sigma, 1e-4, 10.0, "m", "depth sensor noise")
       .number("cmd_sigma", &P::cmd_sigma, 1e-3, 10.0, "m/s",
-              "error of the velocity from the commanded surge (no DVL), each horizontal axis, per command")
+              "error of the velocity from the commands (no DVL), each horizontal axis, per command")
       .number("current_sigma", &P::current_sigma, 1e-3, 10.0, "m/s",
               "water current (estimated with the commanded-speed model): standard deviation, first-order Markov")
       .number("current_tau", &P::current_tau, 1.0, 1e6, "s", "water current: correlation time")
@@ -104,10 +104,11 @@ bool AuvNavigator::dvl(double t, const Eigen::Vector3d& v_body) {
   return submit(in);
 }
 
-bool AuvNavigator::commandedSpeed(double t, double surge) {
-  if (!std::isfinite(t) || !std::isfinite(surge)) return refuse(true, "bad_input");
+bool AuvNavigator::commandedVelocity(double t, double surge, double sway) {
+  if (!std::isfinite(t) || !std::isfinite(surge) || !std::isfinite(sway)) return refuse(true, "bad_input");
   Input in{Kind::kCommand, t};
   in.a = surge;
+  in.b = sway;
   return submit(in);
 }
 
@@ -199,7 +200,7 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
     }
     case Kind::kCommand: {
       // The aColor's motion model from its commands: the horizontal velocity through the water (over ground
-      // minus the current) is surge * [cos yaw, sin yaw]. It enters as a velocity pseudo-measurement with an
+      // minus the current) is the body's (surge, sway) turned by the yaw. It enters as a velocity pseudo-measurement with an
       // error (cmd_sigma) rather than replacing the constant-velocity prediction, so the fixes can still correct
       // the velocity (speed error) and reveal the current.
       if (in.t - f.dvl_t <= cfg_.dvl_timeout) return true;  // the DVL measures what the commands only suggest
@@ -208,7 +209,8 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
       propagate(f, in.t);
       if (!f.initialised) return true;
       Eigen::Matrix<double, 2, kNavStates> H = Eigen::Matrix<double, 2, kNavStates>::Zero();
-      const Eigen::Vector2d w(in.a * std::cos(yaw), in.a * std::sin(yaw));  // along the AHRS heading: w = v - c + b J w
+      const double c = std::cos(yaw), sn = std::sin(yaw);  // by the AHRS heading: w = v - c + b J w
+      const Eigen::Vector2d w(c * in.a - sn * in.b, sn * in.a + c * in.b);
       H(0, kVel) = H(1, kVel + 1) = 1.0;
       H(0, kCur) = H(1, kCur + 1) = -1.0;
       H(0, kBias) = -w.y();

@@ -22,13 +22,7 @@ long everySteps(const char* name, double rate_hz, double dt) {
 models::EnvironmentParams environmentOf(const Scenario& sc) { return sc.sea; }
 
 Eigen::VectorXd mixToThrusters(const Eigen::MatrixXd& tcm, const AuvCommand& c) {
-  const Eigen::Vector4d in(c.surge, c.sway, c.heave, c.yaw);
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(tcm.cols());
-  for (int axis = 0; axis < 4; ++axis) {
-    const double scale = tcm.row(axis).cwiseAbs().maxCoeff();
-    if (scale > 1e-9) out += (in[axis] / scale) * tcm.row(axis).transpose();
-  }
-  return out.cwiseMax(-1.0).cwiseMin(1.0);
+  return models::mixAxes(tcm, Eigen::Vector4d(c.surge, c.sway, c.heave, c.yaw));
 }
 
 std::optional<AuvCommand> fromRcChannels(const std::vector<std::uint16_t>& ch) {

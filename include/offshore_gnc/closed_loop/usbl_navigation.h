@@ -3,7 +3,7 @@
 // level (the transceiver session's frames go as bytes through the real codec to the beacon simulator, whose
 // replies come back as bytes, as over the simulation's pseudo-terminal), each reply placed by the USV's relayed GPS
 // and heading at its time with the quality gates (usbl::Positioner, the Usbl nodelet's core), and the accepted
-// fixes fused with depth, the AHRS and the DVL or the commanded surge (navigation::AuvNavigator, the AuvNavigation
+// fixes fused with depth, the AHRS and the DVL or the commands' velocity (navigation::AuvNavigator, the AuvNavigation
 // nodelet's core), the estimate given at that nodelet's rate. Configured from the same files (config/usbl/usbl.yaml,
 // config/navigation/auv_<model>.yaml).
 #include <Eigen/Core>
@@ -63,7 +63,9 @@ class UsblNavigation {
   void depth(double t, double pressure_pa);
   void ahrs(double t, double roll, double pitch, double yaw, const Eigen::Vector3d& rate_frd);
   void dvl(double t, const Eigen::Vector3d& v_body);
-  void commandedSurge(double t, double surge);
+  void commandedVelocity(double t, const Eigen::Vector2d& surge_sway) {  // /auv/commanded_velocity
+    nav_.commandedVelocity(t, surge_sway.x(), surge_sway.y());
+  }
   // Another absolute position fix taken at t (the AUV's GPS at the surface), straight into the filter; true when
   // it went in (not gated).
   bool positionFix(double t, const Eigen::Vector3d& ned, const Eigen::Matrix3d& cov) { return nav_.usblFix(t, ned, cov); }

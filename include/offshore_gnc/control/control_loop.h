@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/control/vehicle_control.h"
@@ -35,6 +37,9 @@ struct ActuatorCommand {
   JoystickOut joystick;
   Girona500Out thrusters;
   std::vector<std::uint16_t> rc;
+  // The AUVs: the velocity through the water (body surge, sway) [m/s] the command gives (AcolorController::
+  // waterVelocity), the navigation's speed without a DVL
+  Eigen::Vector2d water_velocity = Eigen::Vector2d::Zero();
   bool active = false;  // false: the neutral command (why() says why)
 };
 

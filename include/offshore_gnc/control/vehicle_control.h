@@ -87,6 +87,8 @@ struct AcolorControlParams {
   // speed the navigation assumes from the command is the one the PWM gives. Default: the aColor model's steady
   // state (acolorSurgeCommand).
   std::function<double(double)> surge_command_for;
+  // The vehicle whose speed through the water its commands predict (waterVelocity); default the aColor model.
+  std::shared_ptr<const models::AuvModel> model;
   AcolorControlParams();
   static const ParamTable<AcolorControlParams>& table();
   void validate() const;
@@ -111,11 +113,20 @@ class AcolorController {
   // integral built on a frozen estimate is no measure of the push needed (kept instead, it drove the aColor on at
   // its bound while its estimate sat on the point: evaluation run 64). docs/guidance-control.md has the figures.
   void setFixLost(bool lost) { fix_lost_ = lost; }
+  // The velocity through the water (body surge, sway) [m/s] that the channels it has sent give: the model's surge
+  // and sway equations driven through the mixer by them, integrated at the control rate. The aColor has no DVL;
+  // its navigation takes this as its speed whether it follows a leg or holds a point (AuvNavigator::
+  // commandedVelocity): guidance's desired surge alone said nothing of a hold's thrust, so the hold's velocity
+  // estimate was only what the lagging USBL fixes revealed, and with more than a gentle push it swung on that lag.
+  Eigen::Vector2d waterVelocity() const { return water_; }
   const Counters& counters() const { return counters_; }
   static std::uint16_t pwm(double normalised);  // -1..1 -> 1100..1900 us, 1500 neutral
 
  private:
+  std::vector<std::uint16_t> command(const VehicleState& s, const MotionReference& r);
+  void predictWater(const std::vector<std::uint16_t>& ch);
   AcolorControlParams p_;
+  Eigen::Vector2d water_ = Eigen::Vector2d::Zero();
   bool fix_lost_ = false;
   Pid yaw_, heave_, north_, east_;
   Counters counters_;
@@ -155,6 +166,7 @@ struct Girona500ControlParams {
   Eigen::MatrixXd tcm;           // 4 x n (surge, sway, heave, yaw); default: models::AuvParams::girona500().tcm()
   Eigen::VectorXd max_thrust;    // default: the smaller of each thruster's forward / reverse maximum [N]
   ThrustAllocator::CommandFor command_for;  // default: the models' inverse thruster curves
+  std::shared_ptr<const models::AuvModel> model;  // whose speed through the water the thrust predicts; Girona500
   double dt = 0.1;
   Girona500ControlParams();
   static const ParamTable<Girona500ControlParams>& table();
@@ -172,11 +184,16 @@ class Girona500Controller {
   void setParams(const Girona500ControlParams& p);
   const Girona500ControlParams& params() const { return p_; }
   Girona500Out update(const VehicleState& s, const MotionReference& r);
+  // The velocity through the water its allocated thrust gives (as AcolorController::waterVelocity): the
+  // navigation's speed while the DVL is silent (no bottom lock, a fault).
+  Eigen::Vector2d waterVelocity() const { return water_; }
   const ThrustAllocator& allocator() const { return alloc_; }
   const Counters& counters() const { return counters_; }
 
  private:
+  Girona500Out command(const VehicleState& s, const MotionReference& r);
   Girona500ControlParams p_;
+  Eigen::Vector2d water_ = Eigen::Vector2d::Zero();
   Pid n_, e_, d_, yaw_;
   double cross_offset_ = 0.0;
   Eigen::Vector2d hold_i_ = Eigen::Vector2d::Zero();  // the hold's integral of the NED error [m s]

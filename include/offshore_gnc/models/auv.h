@@ -52,6 +52,12 @@ struct AuvParams {
   double buoyancy(double water_density) const { return water_density * gravity * volume; }  // B
 };
 
+// A flight controller's mixer (ArduSub's, as the aColor's Pixhawk runs it): normalised axis commands (surge, sway,
+// heave, yaw; -1..1) to per-thruster commands, each thruster's factor per axis its column of the thruster
+// configuration matrix normalised per axis; the sum clamped to -1..1. The simulator drives the aColor through it,
+// and its control predicts its own speed through it.
+Eigen::VectorXd mixAxes(const Eigen::MatrixXd& tcm, const Eigen::Vector4d& axes);
+
 class AuvModel {
  public:
   explicit AuvModel(const AuvParams& p);  // validates (ConfigError)
@@ -67,6 +73,11 @@ class AuvModel {
     return ok;
   }
   double thrust(int i, double command) const;  // curve of thruster i [N] (command clamped to -1..1)
+  // One step of the surge and sway equations through still water, decoupled, under a body force (X, Y) [N] from
+  // the velocity v (surge, sway) [m/s]: (m - added mass) dv/dt = force - (|lin| + |quad| |v|) v, semi-implicit
+  // (stable at any step: the aColor's surge time constant near full speed, 0.09 s, is shorter than a control
+  // step). What a vehicle without a DVL predicts of its own speed from the commands it sends.
+  Eigen::Vector2d waterVelocityStep(const Eigen::Vector2d& v, const Eigen::Vector2d& force, double dt) const;
   // Inverse curve: the command giving `thrust_n` on thruster i (just outside the dead band for small thrust,
   // clamped to -1..1 beyond saturation; 0 for 0 or non-finite). For allocation set-points and RC channels.
   double commandFor(int i, double thrust_n) const;

@@ -11,7 +11,7 @@ namespace navigation {
 
 struct AuvNavigationParams {
   double rate = 20.0;              // /auv/odom [Hz]: the simulator's INS estimate's rate (perception waits for TF at it)
-  bool use_dvl = true;             // Girona500: the DVL; aColor (none): the commanded surge along the AHRS heading
+  bool use_dvl = true;             // Girona500: the DVL; aColor (none): the commands' velocity (Control)
   double fix_min_sigma = 1.0;      // [m] a fix's sigma floor: the USV GPS's error and its pose at the fix time
   double fix_angle_sigma = 0.01;   // [rad] the fix's angle error: sigma = max(fix_min_sigma, range * this)
   double water_density = 1000.0;   // [kg/m^3] fresh water; 1025 at sea

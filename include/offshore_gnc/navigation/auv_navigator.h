@@ -4,7 +4,7 @@
 // USBL fixes computed on the USV (placed by its GPS and heading) and relayed to the AUV, so they arrive 0.5-2 s
 // after they were taken: the filter keeps the last history_s seconds of inputs with the state after each, rolls
 // back to the fix's stamp, applies it and replays what came later. Velocity from the DVL (Girona500) or, without
-// one (aColor), from the commanded surge, which gives the velocity through the water: the current (a slowly
+// one (aColor), from its commands (the speed through the water they give): the current (a slowly
 // varying state the fixes reveal) makes it the velocity over ground. Depth from the pressure sensor; yaw from the
 // AHRS, less a heading bias the filter estimates (a magnetic compass is off by a degree or more: the DVL's or the
 // commands' velocity then points that far off, and the fixes show the drift it causes). ROS-free; a nodelet wraps it.
@@ -82,10 +82,11 @@ class AuvNavigator {
   bool depth(double t, double z);                               // z down [m]
   bool heading(double t, double yaw, double yaw_rate);          // NED yaw [rad], rate [rad/s]
   bool dvl(double t, const Eigen::Vector3d& v_body);            // velocity over ground, body FRD [m/s]
-  // Commanded surge through the water [m/s] (no DVL), only while guidance follows a path: a dynamic-positioning
-  // hold's thrust is no speed demand (its desired surge of 0 read as "still in the water" made every fix's motion
-  // current; the aColor holding at the surface chased that current 130 m away, its fixes gated out).
-  bool commandedSpeed(double t, double surge);
+  // Velocity through the water that the thrusters' commands give, body surge and sway [m/s] (no DVL: the aColor's
+  // control predicts it from the channels it sends, following or holding; AcolorController::waterVelocity). Not
+  // guidance's desired surge: a dynamic-positioning hold's thrust is no speed demand (its desired surge of 0 read
+  // as "still in the water" made every fix's motion current; the aColor holding at the surface chased it 130 m).
+  bool commandedVelocity(double t, double surge, double sway);
   bool predict(double t);                                       // propagate the filter to t
   // The estimate at t (extrapolated from the latest state, or from the history for an earlier t); const.
   AuvNavEstimate estimate(double t) const;
@@ -116,7 +117,7 @@ class AuvNavigator {
     double t;
     Eigen::Vector3d v = Eigen::Vector3d::Zero();  // fix position, DVL velocity
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();  // fix covariance
-    double a = 0.0, b = 0.0;                      // depth, yaw / yaw rate, surge
+    double a = 0.0, b = 0.0;                      // depth, yaw / yaw rate, surge / sway
   };
   struct Entry {
     Input in;

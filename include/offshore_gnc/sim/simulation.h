@@ -29,8 +29,7 @@ struct AuvCommand {
 // aColor flight controller RC channels (1-based channel 3 throttle/heave, 4 yaw, 5 forward, 6 lateral),
 // 1100..1900 us with 1500 neutral; nothing for fewer than 6 channels or a pulse outside that range.
 std::optional<AuvCommand> fromRcChannels(const std::vector<std::uint16_t>& channels);
-// ArduSub-style mixer: each thruster's factor per axis is its column of the thruster configuration matrix,
-// normalised per axis; the sum is clamped to -1..1.
+// The RC command through the flight controller's mixer (models::mixAxes).
 Eigen::VectorXd mixToThrusters(const Eigen::MatrixXd& tcm, const AuvCommand& c);
 // Environment of a scenario: its sea state (preset, current, wind, waves).
 models::EnvironmentParams environmentOf(const Scenario& sc);

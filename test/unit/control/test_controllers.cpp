@@ -154,6 +154,57 @@ TEST(Acolor, HoldsAPointWithItsVectoredThrustersOnlyWithGains) {
   EXPECT_EQ(dp.update(s, follow(kPi / 2, 0.5))[5], 1500);  // following: no sway
 }
 
+TEST(Acolor, ItsWaterVelocityIsWhatTheModelDoesWithTheChannelsItSends) {
+  // The navigation's speed without a DVL: a hold toward a point ahead and to starboard (surge and sway at once,
+  // through the mixer) and then a leg at 0.7 m/s, the channels driving the model in still water; the controller's
+  // prediction follows the model's velocity through every transient.
+  AcolorControlParams p;
+  p.hold = {0.1, 0.0, 0.2, 0.4, 0.3};
+  AcolorController ctrl(p);
+  models::AuvModel m(models::AuvParams::aColor());
+  VehicleState s0;
+  s0.position = Eigen::Vector3d(0, 0, 2);
+  m.reset(s0);
+  const models::Environment still;
+  double worst = 0.0, moved = 0.0;
+  for (int k = 0; k < 600; ++k) {  // 60 s at 10 Hz
+    const VehicleState& s = m.state();
+    const auto ch = ctrl.update(s, k < 300 ? holdAt(6, 4, 0.0) : follow(0.0, 0.7));
+    auto n = [&](int c) { return (ch[c - 1] - 1500.0) / 400.0; };
+    ASSERT_TRUE(m.setCommand(models::mixAxes(m.tcm(), Eigen::Vector4d(n(5), n(6), 0.0, n(4)))));
+    for (int i = 0; i < 10; ++i) m.step(0.01, still);
+    const Eigen::Vector2d v = m.state().velocity.head<2>();
+    worst = std::max(worst, (ctrl.waterVelocity() - v).norm());
+    moved = std::max(moved, std::abs(v.y()));
+  }
+  EXPECT_GT(moved, 0.1);  // it did sway
+  EXPECT_NEAR(ctrl.waterVelocity().x(), 0.7, 0.02);
+  EXPECT_LT(worst, 0.03);
+}
+
+TEST(Girona500, ItsWaterVelocityIsWhatTheModelDoesWithTheAllocatedThrust) {
+  // The same for the Girona500, whose navigation falls back on it when the DVL is silent.
+  Girona500Controller ctrl;
+  models::AuvModel m(models::AuvParams::girona500());
+  VehicleState s0;
+  s0.position = Eigen::Vector3d(0, 0, 2);
+  m.reset(s0);
+  const models::Environment still;
+  double worst = 0.0;
+  for (int k = 0; k < 600; ++k) {
+    const VehicleState& s = m.state();
+    MotionReference r = k < 300 ? holdAt(5, 3, 0.0) : follow(0.0, 0.5);
+    r.path_angle = 0.0;
+    r.point = k < 300 ? r.point : Eigen::Vector3d(s.position.x(), 0.0, 2.0);
+    const Girona500Out out = ctrl.update(s, r);
+    ASSERT_TRUE(m.setCommand(out.alloc.setpoint));
+    for (int i = 0; i < 10; ++i) m.step(0.01, still);
+    worst = std::max(worst, (ctrl.waterVelocity() - m.state().velocity.head<2>()).norm());
+  }
+  EXPECT_GT(ctrl.waterVelocity().x(), 0.2);
+  EXPECT_LT(worst, 0.05);
+}
+
 TEST(Acolor, AHoldDriftsWhileTheNavigationHasNoFixAndResumesFromRest) {
   // Without a speed sensor its estimate stands still between fixes: pushing on it would wind the integral up
   // against an error that never changes (evaluation run 4: 26 m in 54 s into the USV's way).

@@ -31,6 +31,7 @@ struct Truth {
 // position error every 0.1 s after t_rmse.
 struct TrackSim {
   double u = 1.0;                                   // true surge
+  std::function<double(double)> v = [](double) { return 0.0; };  // true sway (to starboard)
   std::function<double(double)> yaw_rate = [](double) { return 0.0; };
   std::function<double(double)> depth = [](double) { return 5.0; };
   std::function<bool(double)> fixes_on = [](double) { return true; };
@@ -39,7 +40,8 @@ struct TrackSim {
   int outliers = 0;
   double dvl_sigma = 0.02, heading_sigma = 0.0, heading_bias = 0.0, depth_sigma = 0.05;
   bool use_dvl = true;
-  double cmd_surge = 1.0;  // commanded surge (no DVL)
+  double cmd_surge = 1.0;  // the commands' velocity through the water, surge and sway (no DVL)
+  std::function<double(double)> cmd_sway = [](double) { return 0.0; };
   Eigen::Vector2d current = Eigen::Vector2d::Zero();  // water current: over ground = surge along yaw + current
   double t_rmse = 30.0;
   std::mt19937 rng{42};
@@ -61,8 +63,9 @@ struct TrackSim {
       truth.t = t;
       truth.r = yaw_rate(t);
       const double z_next = depth(t + 0.01);
-      truth.v = {u * std::cos(truth.yaw) + current.x(), u * std::sin(truth.yaw) + current.y(),
-                 (z_next - depth(t)) / 0.01};
+      const double sway = v(t);
+      truth.v = {u * std::cos(truth.yaw) - sway * std::sin(truth.yaw) + current.x(),
+                 u * std::sin(truth.yaw) + sway * std::cos(truth.yaw) + current.y(), (z_next - depth(t)) / 0.01};
       truth.p.z() = depth(t);
       if (k % 5 == 0)
         nav.heading(t, wrapAngle(truth.yaw + heading_bias + (heading_sigma > 0 ? gauss(heading_sigma) : 0.0)),
@@ -72,7 +75,7 @@ struct TrackSim {
         const Eigen::Vector3d vb(c * truth.v.x() + s * truth.v.y(), -s * truth.v.x() + c * truth.v.y(), truth.v.z());
         nav.dvl(t, vb + Eigen::Vector3d(gauss(dvl_sigma), gauss(dvl_sigma), gauss(dvl_sigma)));
       }
-      if (!use_dvl && k % 10 == 0) nav.commandedSpeed(t, cmd_surge);
+      if (!use_dvl && k % 10 == 0) nav.commandedVelocity(t, cmd_surge, cmd_sway(t));
       if (k % 50 == 0) nav.depth(t, truth.p.z() + gauss(depth_sigma));
       const long fp = std::lround(fix_period * 100.0);
       if (k % fp == 0 && fixes_on(t)) {
@@ -393,6 +396,36 @@ TEST(AuvNavigator, EstimatesTheCurrentOnCommandsWithoutDvl) {
   EXPECT_LT(e.current_covariance.trace(), 2 * 0.05 * 0.05);
 }
 
+// 6c. aColor holding a point: its thrusters swing it from side to side through the water (up to 0.3 m/s, a 40 s
+// period, heading north, in a 0.2 m/s current to the south-west) and its control says so (the commands'
+// velocity, sway included). Taken as "still in the water" instead (a hold's thrust as no speed), the velocity
+// over ground is the current's, and only the lagging fixes show the swing.
+TEST(AuvNavigator, TakesTheSwayOfAHoldsThrustFromTheCommands) {
+  auto run = [](bool with_sway, double& v_err) {
+    AuvNavigator nav;
+    TrackSim sim;
+    sim.use_dvl = false;
+    sim.u = sim.cmd_surge = 0.0;
+    sim.v = [](double t) { return 0.3 * std::sin(2.0 * kPi * t / 40.0); };
+    if (with_sway) sim.cmd_sway = sim.v;
+    sim.current = Eigen::Vector2d(-0.14, -0.14);
+    sim.t_rmse = 60.0;
+    v_err = 0.0;
+    sim.run(nav, 200.0, [&](const Truth& tr, const AuvNavEstimate& e) {
+      if (tr.t >= 60.0) v_err = std::max(v_err, (e.velocity - tr.v).head<2>().norm());
+    });
+    return sim.rmse();
+  };
+  double v_with, v_without;
+  const double with = run(true, v_with), without = run(false, v_without);
+  std::printf("sideways: position RMSE %.3f m (largest velocity error %.3f m/s) with the sway, %.3f (%.3f) without\n",
+              with, v_with, without, v_without);
+  EXPECT_LT(with, 0.7);
+  EXPECT_LT(v_with, 0.15);
+  EXPECT_GT(v_without, 4.0 * v_with);  // measured 0.045 and 0.365 m/s; RMSE 0.62 and 1.67 m
+  EXPECT_GT(without, 2.0 * with);
+}
+
 // 7. Non-finite input of every kind is refused and counted; the state stays finite.
 TEST(AuvNavigator, RefusesNonFiniteInput) {
   AuvNavigator nav;
@@ -415,8 +448,9 @@ TEST(AuvNavigator, RefusesNonFiniteInput) {
   no(nav.heading(0.5, 0.0, inf));
   no(nav.dvl(nan, {1, 0, 0}));
   no(nav.dvl(0.5, {1, nan, 0}));
-  no(nav.commandedSpeed(nan, 1.0));
-  no(nav.commandedSpeed(0.5, -inf));
+  no(nav.commandedVelocity(nan, 1.0, 0.0));
+  no(nav.commandedVelocity(0.5, 1.0, nan));
+  no(nav.commandedVelocity(0.5, -inf, 0.0));
   no(nav.predict(nan));
   EXPECT_EQ(nav.counters().get("bad_input"), static_cast<std::uint64_t>(refused));
   EXPECT_EQ(nav.counters().get("fix_accepted"), 1u);
