@@ -199,7 +199,7 @@ class Girona500Controller {
   Eigen::Vector2d hold_i_ = Eigen::Vector2d::Zero();  // the hold's integral of the NED error [m s]
   Eigen::Vector2d force_lp_ = Eigen::Vector2d::Zero();  // low-passed NED force demand (crab)
   double crab_ = 0.0;  // heading offset from guidance's heading [rad]
-  void updateCrab(const MotionReference& r, const Eigen::Vector2d& f_ned);
+  void updateCrab(const MotionReference& r, const Eigen::Vector2d& f_ned, double yaw);
   ThrustAllocator alloc_;
   Counters counters_;
 };

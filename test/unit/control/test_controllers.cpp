@@ -255,6 +255,34 @@ TEST(Girona500, HoldingTurnsTheBowIntoALateralDemandItsSwayThrusterCannotMeet) {
   EXPECT_NEAR(following.update(s, f).tau(3), 0.0, 1.0);
 }
 
+TEST(Girona500, HoldingAbeamOfAStrongCurrentPicksOneSideAndStaysThere) {
+  // A 0.45 m/s current from the east, guidance's heading north: the demand lies abeam, where bow-to and stern-to
+  // are equally near. Choosing afresh every step, the bow swung from one to the other (its yaw moment saturated,
+  // the vehicle never facing either way) and a surfaced Girona500 went 260 m downstream (evaluation seed 1000 run
+  // 94). Beam on it cannot hold (about 115 N of drag against its 40 N sway thruster); head or stern on it can (60 N).
+  models::EnvironmentParams ep;
+  ep.current_east = -0.45;
+  const models::Environment env(ep);
+  Girona500Controller g;
+  models::AuvModel m(models::AuvParams::girona500());
+  VehicleState s0;
+  s0.position = Eigen::Vector3d(0, 0, 2);
+  m.reset(s0);
+  double yaw_lo = 1e9, yaw_hi = -1e9, worst = 0.0;
+  for (int k = 0; k < 6000; ++k) {  // 600 s at 10 Hz
+    ASSERT_TRUE(m.setCommand(g.update(m.state(), holdAt(0, 0, 0.0)).alloc.setpoint));
+    for (int i = 0; i < 10; ++i) m.step(0.01, env);
+    if (k >= 3000) {
+      const double y = std::abs(m.state().yaw);  // bow or stern into the current: +-90 deg
+      yaw_lo = std::min(yaw_lo, y);
+      yaw_hi = std::max(yaw_hi, y);
+      worst = std::max(worst, m.state().position.head<2>().norm());
+    }
+  }
+  EXPECT_LT(yaw_hi - yaw_lo, 0.3);
+  EXPECT_LT(worst, 2.0);
+}
+
 TEST(Girona500, HoldingIntegratesTheStandingErrorAwayWithinItsBound) {
   // Table 4.3's own integral (K_I 0.0106) would take an hour to build against a steady push: a hold stood off in
   // proportion to it (1.6 m against 240 N at the surface). The hold's integral (hold_ki N per metre-second, bounded
