@@ -135,15 +135,6 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
   return c;
 }
 
-const ParamTable<SurfaceGpsConfig>& SurfaceGpsConfig::table() {
-  using P = SurfaceGpsConfig;
-  static const ParamTable<P> t = ParamTable<P>()
-      .number("rate", &P::rate, 0.0, 20.0, "Hz", "the AUV's GPS fixes per second at the surface (ROS-free model; 0: none)")
-      .number("sigma", &P::sigma, 0.0, 50.0, "m", "their horizontal standard deviation, each axis")
-      .number("max_depth", &P::max_depth, 0.0, 5.0, "m", "deeper than this the antenna is under water: no fix");
-  return t;
-}
-
 UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
     : cfg_(cfg),
       sim_(scenario, cfg.sim),
@@ -328,9 +319,6 @@ AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, co
   c.safety = readSafety(dir + "/safety/auv.yaml", safety::auvDefaults());
   c.usbl = loadUsblNavigation(dir, model);
   c.length = auvLength(dir, model);
-  // The Girona500 has a GPS for the surface (COLA2's navigator fuses it); the aColor (a BlueROV2-class frame on
-  // ArduSub) has none: at the surface it stays on the USBL, the USV a few metres away.
-  if (model == "acolor") c.surface_gps.rate = 0.0;
   c.sim.seed = 2;  // sim_auv.launch's default
   c.sim.auv = model == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
   return c;
@@ -350,7 +338,6 @@ double auvLength(const std::string& dir, const std::string& model) {
 AuvStack::AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg)
     : cfg_(cfg),
       sim_(scenario, cfg.sim),
-      gps_rng_(static_cast<std::mt19937::result_type>(cfg.sim.seed * 7919 + 5)),
       sonar_(cfg.sonar),
       guidance_(cfg.guidance),
       control_(cfg.control),
@@ -359,9 +346,7 @@ AuvStack::AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg)
       guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
       mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)),
-      navigation_every_(stepsPer(cfg.usbl.params.rate, cfg.sim.dt)),
-      gps_every_(cfg.surface_gps.rate > 0.0 ? stepsPer(cfg.surface_gps.rate, cfg.sim.dt) : 0) {
-  cfg.surface_gps.table().validate(cfg.surface_gps);
+      navigation_every_(stepsPer(cfg.usbl.params.rate, cfg.sim.dt)) {
   if (cfg.navigation == "usbl")
     usbl_.emplace(cfg.usbl, geo::LocalNed(scenario.origin), cfg.usv_gps_antenna, cfg.usbl_seed, cfg.sim.faults);
 }
@@ -371,16 +356,6 @@ void AuvStack::onUsvStatus(mission::UsvPhase phase, const Eigen::Vector2d& ned, 
   if (!cfg_.mission_enabled) return;
   mission_.onUsvStatus(phase, ned, station, t);
   if (auto p = mission_.takePath()) guidance_.setPath(*p);
-}
-
-void AuvStack::surfaceGps(double t) {
-  const VehicleState& x = sim_.state();
-  if (gps_every_ == 0 || step_ % gps_every_ != 0 || x.position.z() > cfg_.surface_gps.max_depth) return;
-  std::normal_distribution<double> n(0.0, cfg_.surface_gps.sigma);
-  const Eigen::Vector3d fix(x.position.x() + n(gps_rng_), x.position.y() + n(gps_rng_), x.position.z());
-  const double var = std::max(cfg_.surface_gps.sigma * cfg_.surface_gps.sigma, 1e-4);
-  // horizontal only: the depth sensor gives the depth, the fix's is taken as unknown
-  usbl_->positionFix(t, fix, Eigen::Vector3d(var, var, 100.0).asDiagonal());
 }
 
 void AuvStack::onUsvGps(const sim::GpsCompassReading& g) {
@@ -444,7 +419,7 @@ void AuvStack::step() {
     if (out.ahrs) usbl_->ahrs(out.ahrs->t, out.ahrs->roll, out.ahrs->pitch, out.ahrs->yaw, out.ahrs->angular_rate);
     if (out.dvl) usbl_->dvl(out.dvl->t, out.dvl->velocity);
     usbl_->step(t, usv_truth_, sim_.state());
-    surfaceGps(t);
+    if (out.gps) usbl_->gpsFix(out.gps->t, out.gps->fix, out.gps->sigma);  // /auv/gps/fix (sim::SurfaceGps)
     for (double s : usbl_->acceptedNow()) sup.heard(safety::Source::kUsbl, s);
     if (step_ % navigation_every_ == 0) {
       control_.onFixLost(usbl_->status(t) == navigation::NavStatus::kFixLost);  // /auv/navigation/status

@@ -112,18 +112,15 @@ int main() {
         {{"default", sim::AhrsConfig()}});
   table("Simulated DVL", "the AuvSim nodelet's private `dvl/...` parameters.", sim::DvlConfig::table(),
         {{"default", sim::DvlConfig()}});
+  table("Simulated GPS at the surface", "the AuvSim nodelet's private `surface_gps/...` parameters: the Girona500's "
+        "GPS, /auv/gps/fix while the antenna is out of the water, fused by the AUV navigation as a position fix "
+        "(docs/mission.md, SURFACED); the aColor has none. The ROS-free mission uses these defaults.",
+        sim::SurfaceGpsConfig::table(), {{"default", sim::SurfaceGpsConfig()}});
   table("Simulated radio", "`config/relay/radio.yaml` -> the main job's radio between the relays "
         "(python/offshore_gnc/radio.py) and the ROS-free mission's (docs/relay.md).", sim::RadioParams::table(),
         {{"default", sim::RadioParams()}});
   table("AUV navigation", "`config/navigation/auv_<model>.yaml` -> the AuvNavigation nodelet (USBL + depth + AHRS + DVL).",
         navigation::AuvNavigatorConfig::table(), {{"default", navigation::AuvNavigatorConfig()}});
-  closed_loop::SurfaceGpsConfig no_gps;
-  no_gps.rate = 0.0;
-  table("AUV GPS at the surface (ROS-free mission)",
-        "`closed_loop::AuvStack`'s model of the Girona500's GPS, fused as a position fix while the antenna is out of "
-        "the water (docs/mission.md, SURFACED); the aColor has none. Not read from a file; the ROS simulator has no "
-        "such sensor yet.",
-        closed_loop::SurfaceGpsConfig::table(), {{"girona500", closed_loop::SurfaceGpsConfig()}, {"acolor", no_gps}});
   table("Site origin",
         "`/site/origin` on each vehicle's master, shared by every node (launch/site.launch): `origin:=LAT,LON[,ALT]`, "
         "or the `origin:` of a site file (`site:=FILE`, e.g. `config/sites/pyhajarvi.yaml`; in simulation the "

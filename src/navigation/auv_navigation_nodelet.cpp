@@ -1,7 +1,8 @@
 // AuvNavigation: the AUV's navigation filter (navigation::AuvNavigator) in the AUV's master. USBL fixes
 // (/auv/usbl/fix, placed on the USV and relayed, stamped when taken), depth from /auv/pressure, yaw and yaw rate
 // from the AHRS (/auv/imu), and the DVL (/auv/dvl, Girona500) or the velocity through the water the commands give
-// (/auv/commanded_velocity from Control: the aColor, a Girona500 whose DVL is silent) -> /auv/odom + TF
+// (/auv/commanded_velocity from Control: the aColor, a Girona500 whose DVL is silent), and the Girona500's GPS at
+// the surface (/auv/gps/fix, placed by /site/origin) -> /auv/odom + TF
 // map -> auv/base_link at a fixed rate on the ROS (simulation) clock, once the first fix has initialised the
 // filter and while it has a heading (no_heading: its dead reckoning has stopped, so it publishes no estimate rather
 // than a frozen one, and the safety supervisor's navigation rule sees the silence); /auv/navigation/status
@@ -18,6 +19,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/FluidPressure.h>
 #include <sensor_msgs/Imu.h>
+#include <sensor_msgs/NavSatFix.h>
 #include <std_msgs/String.h>
 #include <tf2/LinearMath/Quaternion.h>
 #include <tf2/utils.h>
@@ -29,6 +31,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "offshore_gnc/geo/geo.h"
@@ -38,6 +41,7 @@
 #include "offshore_gnc/ros/conversions.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/site.h"
 
 namespace offshore_gnc {
 
@@ -101,6 +105,14 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     pressure_sub_ = nh.subscribe("/auv/pressure", 20, &AuvNavigationNodelet::onPressure, this);
     imu_sub_ = nh.subscribe("/auv/imu", 100, &AuvNavigationNodelet::onImu, this);
     if (params_.use_dvl) dvl_sub_ = nh.subscribe("/auv/dvl", 20, &AuvNavigationNodelet::onDvl, this);
+    // the vehicle's own GPS at the surface (the Girona500's), placed in the site's frame: without /site/origin
+    // its fixes are refused, counted and said (the USBL fixes come placed already)
+    try {
+      site_.emplace(ros_util::readOrigin());
+    } catch (const ConfigError& e) {
+      site_error_ = e.what();
+    }
+    gps_sub_ = nh.subscribe("/auv/gps/fix", 10, &AuvNavigationNodelet::onGps, this);
     // the commands' velocity always: the filter uses it only while no DVL sample is fresh (dvl_timeout)
     command_sub_ = nh.subscribe("/auv/commanded_velocity", 10, &AuvNavigationNodelet::onCommand, this);
 
@@ -114,6 +126,27 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
   }
 
   // ---- inputs ----
+
+  void onGps(const sensor_msgs::NavSatFix::ConstPtr& m) {
+    if (m->status.status < sensor_msgs::NavSatStatus::STATUS_FIX) return;  // no fix: nothing to fuse
+    if (!site_) {
+      counters_.increment("gps_without_site");
+      NODELET_ERROR_THROTTLE(10.0, "ignoring /auv/gps/fix: %s", site_error_.c_str());
+      return;
+    }
+    const double sigma = usableCovariance(m->position_covariance) ? std::sqrt(std::max(m->position_covariance[0],
+                                                                                         m->position_covariance[4]))
+                                                                  : params_.fix_min_sigma;
+    if (!std::isfinite(m->latitude) || !std::isfinite(m->longitude) || std::abs(m->latitude) > 90.0 ||
+        std::abs(m->longitude) > 180.0 || m->header.stamp.isZero() || !std::isfinite(sigma)) {
+      counters_.increment("bad_gps");
+      NODELET_WARN_THROTTLE(5.0, "ignoring a GPS fix without a finite position, covariance or stamp");
+      return;
+    }
+    const Eigen::Vector3d ned = site_->toNed(geo::LatLonAlt{m->latitude, m->longitude, 0.0});
+    std::lock_guard<std::mutex> l(mutex_);
+    nav_->gpsFix(m->header.stamp.toSec(), ned.head<2>(), sigma);  // gated like a USBL fix (the core counts it)
+  }
 
   void onFix(const UsblFix::ConstPtr& m) {
     if (m->quality != UsblFix::QUALITY_OK) {
@@ -283,9 +316,9 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
         break;
     }
     s.add("status", statusName(status_));
-    s.add("velocity_source", params_.use_dvl ? "dvl" : "commanded_surge");
+    s.add("velocity_source", params_.use_dvl ? "dvl" : "commands");
     ros_util::addCounters(s, nav_->counters(), {"bad_input"});
-    ros_util::addCounters(s, counters_, {"bad_fix", "bad_pressure", "bad_imu", "bad_dvl"});
+    ros_util::addCounters(s, counters_, {"bad_fix", "bad_pressure", "bad_imu", "bad_dvl", "bad_gps"});
   }
 
   std::mutex mutex_;  // nav_ and the AHRS attitude below; callbacks run concurrently
@@ -293,6 +326,8 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
   Counters counters_;  // this nodelet's own (thread-safe)
   navigation::AuvNavigationParams params_;
   std::string base_frame_;
+  std::optional<geo::LocalNed> site_;  // /site/origin's frame, for the GPS fixes
+  std::string site_error_;
   // the latest AHRS attitude and rates (orientation of the published pose; yaw is the filter's)
   double roll_ = 0.0, pitch_ = 0.0;
   Eigen::Vector2d rate_pq_ = Eigen::Vector2d::Zero();
@@ -301,7 +336,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
   navigation::NavStatus published_status_ = navigation::NavStatus::kNoFix;  // on /auv/navigation/status
   ros::Time start_, last_stamp_;
   ros::Publisher odom_pub_, status_pub_, refused_pub_;
-  ros::Subscriber fix_sub_, pressure_sub_, imu_sub_, dvl_sub_, command_sub_;
+  ros::Subscriber fix_sub_, pressure_sub_, imu_sub_, dvl_sub_, command_sub_, gps_sub_;
   tf2_ros::TransformBroadcaster tf_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::WallTimer diag_timer_;

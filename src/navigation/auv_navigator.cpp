@@ -112,6 +112,12 @@ bool AuvNavigator::commandedVelocity(double t, double surge, double sway) {
   return submit(in);
 }
 
+bool AuvNavigator::gpsFix(double t, const Eigen::Vector2d& ne, double sigma) {
+  if (!std::isfinite(sigma)) return refuse(true, "bad_input");
+  const double var = std::max(sigma * sigma, 1e-4);
+  return usblFix(t, Eigen::Vector3d(ne.x(), ne.y(), 0.0), Eigen::Vector3d(var, var, 100.0).asDiagonal());
+}
+
 bool AuvNavigator::predict(double t) {
   if (!std::isfinite(t)) return refuse(true, "bad_input");
   return submit(Input{Kind::kPredict, t});

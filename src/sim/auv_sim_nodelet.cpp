@@ -1,7 +1,8 @@
 // AuvSim: the AUV simulator for the AUV's own master. Owns /clock, integrates the AUV, publishes ground truth
 // (metrics only), the AHRS (/auv/imu), the depth sensor (/auv/pressure), the Micron-like sonar beams and the
 // navigation estimate /auv/odom + TF (a DVL-aided INS stand-in: truth + noise + drift, simulation only; off with
-// ~odom/enabled false, when the navigation nodelet publishes both) and, on a Girona500, the DVL (/auv/dvl).
+// ~odom/enabled false, when the navigation nodelet publishes both) and, on a Girona500, the DVL (/auv/dvl) and its
+// GPS while at the surface (/auv/gps/fix).
 // Takes /auv/thruster_setpoints (Girona500) or /auv/rc_channels (aColor AUV).
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/TwistWithCovarianceStamped.h>
@@ -9,6 +10,7 @@
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/FluidPressure.h>
 #include <sensor_msgs/Imu.h>
+#include <sensor_msgs/NavSatFix.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
@@ -56,6 +58,7 @@ class AuvSimNodelet : public nodelet::Nodelet {
       cfg.ins.drift_per_sqrt_s = p.number("odom/drift", cfg.ins.drift_per_sqrt_s, 0, 10);
       odom_on_ = p.flag("odom/enabled", true);  // false: the navigation nodelet publishes /auv/odom + TF
       ros_util::readParams(p, sim::DvlConfig::table(), cfg.dvl);
+      ros_util::readParams(p, sim::SurfaceGpsConfig::table(), cfg.surface_gps);
       const std::string vehicle = p.choice("vehicle_model", "girona500", {"girona500", "acolor"});
       cfg.auv = vehicle == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
       const std::string params = p.text("model_params", "");  // config/models/*.yaml (models module)
@@ -73,6 +76,7 @@ class AuvSimNodelet : public nodelet::Nodelet {
     truth_pub_ = nh.advertise<nav_msgs::Odometry>("/auv/ground_truth/odom", 10);
     if (odom_on_) odom_pub_ = nh.advertise<nav_msgs::Odometry>("/auv/odom", 10);
     if (sim_->hasDvl()) dvl_pub_ = nh.advertise<geometry_msgs::TwistWithCovarianceStamped>("/auv/dvl", 10);
+    if (sim_->hasDvl()) gps_pub_ = nh.advertise<sensor_msgs::NavSatFix>("/auv/gps/fix", 10);  // the Girona500's
     imu_pub_ = nh.advertise<sensor_msgs::Imu>("/auv/imu", 20);
     pressure_pub_ = nh.advertise<sensor_msgs::FluidPressure>("/auv/pressure", 10);
     sonar_pub_ = nh.advertise<SonarBeam>("/auv/sonar/beam", 50);
@@ -161,6 +165,20 @@ class AuvSimNodelet : public nodelet::Nodelet {
       m.twist.covariance[0] = m.twist.covariance[7] = m.twist.covariance[14] = vv;  // angular: not measured (0)
       dvl_pub_.publish(m);
     }
+    if (out.gps) {
+      sensor_msgs::NavSatFix f;
+      f.header.stamp = stamp;
+      f.header.frame_id = "auv/gps";
+      f.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
+      f.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
+      f.latitude = out.gps->fix.lat_deg;
+      f.longitude = out.gps->fix.lon_deg;
+      f.altitude = out.gps->fix.alt_m;
+      const double var = out.gps->sigma * out.gps->sigma;
+      f.position_covariance = {var, 0, 0, 0, var, 0, 0, 0, 4 * var};
+      f.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
+      gps_pub_.publish(f);
+    }
     if (out.sonar) {
       const auto& b = sim_->beam();
       SonarBeam m;
@@ -184,7 +202,7 @@ class AuvSimNodelet : public nodelet::Nodelet {
   std::string base_frame_;
   unsigned long truth_count_ = 0;
   bool odom_on_ = true;
-  ros::Publisher truth_pub_, odom_pub_, imu_pub_, pressure_pub_, sonar_pub_, dvl_pub_;
+  ros::Publisher truth_pub_, odom_pub_, imu_pub_, pressure_pub_, sonar_pub_, dvl_pub_, gps_pub_;
   ros::Subscriber setpoint_sub_, rc_sub_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   tf2_ros::TransformBroadcaster tf_;

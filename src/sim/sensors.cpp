@@ -535,6 +535,28 @@ std::optional<DvlReading> Dvl::measure(const VehicleState& s) {
   return DvlReading{s.t, v, cfg_.velocity_sigma, altitude};
 }
 
+// ---------------------------------------------------------------- AUV GPS at the surface
+const ParamTable<SurfaceGpsConfig>& SurfaceGpsConfig::table() {
+  using P = SurfaceGpsConfig;
+  static const ParamTable<P> t = ParamTable<P>()
+      .number("surface_gps/rate", &P::rate_hz, 0.1, 20.0, "Hz", "the Girona500's GPS fixes per second at the surface")
+      .number("surface_gps/sigma", &P::sigma, 0.0, 50.0, "m", "their horizontal noise, each axis")
+      .number("surface_gps/max_depth", &P::max_depth, 0.0, 5.0, "m", "deeper than this the antenna is under water: no fix");
+  return t;
+}
+
+SurfaceGps::SurfaceGps(const SurfaceGpsConfig& cfg, const geo::LocalNed& frame, std::uint64_t seed)
+    : cfg_(cfg), frame_(frame), rng_(seed) {
+  SurfaceGpsConfig::table().validate(cfg);
+}
+
+std::optional<SurfaceGpsReading> SurfaceGps::measure(const VehicleState& s) {
+  const Eigen::Vector2d noise(n_(rng_), n_(rng_));  // drawn every sample: the sequence does not depend on depth
+  if (s.position.z() > cfg_.max_depth) return std::nullopt;
+  const Eigen::Vector3d ned(s.position.x() + cfg_.sigma * noise.x(), s.position.y() + cfg_.sigma * noise.y(), 0.0);
+  return SurfaceGpsReading{s.t, frame_.toGeodetic(ned), cfg_.sigma};
+}
+
 // ---------------------------------------------------------------- INS estimate
 InsEstimate::InsEstimate(const InsConfig& cfg, std::uint64_t seed) : cfg_(cfg), rng_(seed) {
   requireRange("ins/position_sigma", cfg.position_sigma, 0, 100);

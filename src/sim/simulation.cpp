@@ -166,6 +166,7 @@ AuvSimulation::AuvSimulation(const Scenario& sc, const Config& cfg)
       depth_(cfg.depth, cfg.seed * 7919 + 4),
       ahrs_(cfg.ahrs, cfg.seed * 7919 + 5),
       dvl_(cfg.dvl, cfg.seed * 7919 + 7),
+      gps_(cfg.surface_gps, geo::LocalNed(sc.origin), cfg.seed * 7919 + 8),
       ins_(cfg.ins, cfg.seed * 7919 + 6),
       has_dvl_(cfg.auv.type == models::AuvType::Girona500) {
   requireRange("dt", cfg.dt, 1e-4, 0.1);
@@ -173,6 +174,7 @@ AuvSimulation::AuvSimulation(const Scenario& sc, const Config& cfg)
   depth_every_ = everySteps("depth/rate", cfg.depth.rate_hz, cfg.dt);
   ahrs_every_ = everySteps("ahrs/rate", cfg.ahrs.rate_hz, cfg.dt);
   dvl_every_ = everySteps("dvl/rate", cfg.dvl.rate_hz, cfg.dt);
+  gps_every_ = everySteps("surface_gps/rate", cfg.surface_gps.rate_hz, cfg.dt);
   odom_every_ = everySteps("odom_rate", cfg.odom_rate_hz, cfg.dt);
   counters_.increment("rejected_commands", 0);  // listed in diagnostics from the start
   VehicleState s;
@@ -202,6 +204,7 @@ const AuvSimulation::Outputs& AuvSimulation::step() {
   out_.ahrs.reset();
   out_.depth.reset();
   out_.dvl.reset();
+  out_.gps.reset();
   out_.odom.reset();
   out_.sonar = false;
   const bool nav_fault = cfg_.faults.active("nav", s.t);  // the navigation's own inputs are silent
@@ -214,6 +217,7 @@ const AuvSimulation::Outputs& AuvSimulation::step() {
     out_.dvl = dvl_.measure(s);
     if (nav_fault || cfg_.faults.active("dvl", s.t)) out_.dvl.reset();
   }
+  if (has_dvl_ && step_ % gps_every_ == 0) out_.gps = gps_.measure(s);  // the Girona500's, as its DVL
   if (step_ % odom_every_ == 0) {
     out_.odom = ins_.estimate(s);  // sampled all the same: its drift goes on
     if (nav_fault) out_.odom.reset();

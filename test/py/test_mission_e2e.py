@@ -95,6 +95,15 @@ def test_default_mission_succeeds(tmp_path):
     # the AUV navigated on USBL fixes (placed by the USV's relayed GPS and heading), fused in AuvNavigation
     assert m["auv_nav_source"] == "usbl" and m["usbl_fixes_received"] > 50, m
     assert m["auv_nav_rmse_m"] is not None and m["auv_nav_rmse_m"] < MAX_NAV_RMSE_M, m
+    # at the surface on its own GPS too (the simulator's /auv/gps/fix, as the ROS-free mission's), and the
+    # control's speed through the water went to the navigation for a silent DVL
+    import rosbag
+    with rosbag.Bag(os.path.join(str(tmp_path / "default"), "auv.bag")) as bag:
+        counts = {t: bag.get_message_count(t) for t in ("/auv/gps/fix", "/auv/commanded_velocity")}
+        nav = [dict((kv.key, kv.value) for kv in st.values) for _, d, _ in bag.read_messages(topics=["/diagnostics"])
+               for st in d.status if st.name.endswith("navigation: navigation")]
+    assert counts["/auv/gps/fix"] > 10 and counts["/auv/commanded_velocity"] > 1000, counts
+    assert nav and "gps_without_site" not in nav[-1] and nav[-1].get("bad_gps", "0") == "0", nav[-1:]
     assert m["auv_xte_true_rmse_m"] is not None and m["auv_xte_true_rmse_m"] < MAX_AUV_RMSE_M, m
     # station keeping with the twin-jet DP (docs/mission.md); the lumped model without DP drifted about 50 m waiting
     assert m["usv_wait_drift_m"] is not None and m["usv_wait_drift_m"] < MAX_WAIT_DRIFT_M, m

@@ -132,13 +132,6 @@ class UsvStack {
 // The AUV's GPS, modelled here because the simulator has none: a fix of the true horizontal position with white
 // noise, at its rate, while the antenna is out of the water; the navigation fuses it as a position fix (the
 // Girona500's navigator fuses its GPS at the surface the same way). The ROS mission has no such sensor yet.
-struct SurfaceGpsConfig {
-  double rate = 1.0;        // fixes per second at the surface [Hz]; 0: no GPS (the aColor's USBL alone)
-  double sigma = 1.5;       // horizontal standard deviation, each axis [m]
-  double max_depth = 0.3;   // deeper than this the antenna is under water: no fix [m]
-  static const ParamTable<SurfaceGpsConfig>& table();
-};
-
 struct AuvStackConfig {
   std::string model = "girona500";    // girona500 | acolor (auv.launch vehicle_model)
   sim::AuvSimulation::Config sim;     // sim_auv.launch: seed 2, the simulator's defaults, the model's params
@@ -154,7 +147,6 @@ struct AuvStackConfig {
   UsblNavigationConfig usbl;          // config/usbl/usbl.yaml, config/navigation/auv_<model>.yaml
   unsigned usbl_seed = 1;             // the beacon simulator's (config/usbl/usbl.yaml seed)
   Eigen::Vector3d usv_gps_antenna{0, 0, -2.5};  // where the USV's GPS reports from (its simulator's gps/antenna)
-  SurfaceGpsConfig surface_gps;       // with navigation usbl; the Girona500's (the aColor has none)
   double length = 1.5;                // the vehicle config's vehicle/length: its size in the recovery figures [m]
   double mission_period = 0.5;
   bool mission_enabled = true;
@@ -198,12 +190,10 @@ class AuvStack {
   void perceive();
   void navigate(const VehicleState& s, double t);  // a new /auv/odom: to TF, guidance, control, the supervisor
 
-  void surfaceGps(double t);  // the modelled GPS (SurfaceGpsConfig) into the navigation
 
   AuvStackConfig cfg_;
   sim::AuvSimulation sim_;
   std::optional<UsblNavigation> usbl_;
-  std::mt19937 gps_rng_;
   VehicleState usv_truth_;
   navigation::PoseHistory poses_;
   perception::SonarTargetExtractor sonar_;
@@ -219,7 +209,7 @@ class AuvStack {
   StackSupervisor safety_;
   bool guided_ = false;
   long step_ = 0;
-  int guidance_every_, control_every_, mission_every_, navigation_every_, gps_every_;
+  int guidance_every_, control_every_, mission_every_, navigation_every_;
 };
 
 }  // namespace closed_loop

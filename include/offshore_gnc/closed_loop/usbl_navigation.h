@@ -66,9 +66,11 @@ class UsblNavigation {
   void commandedVelocity(double t, const Eigen::Vector2d& surge_sway) {  // /auv/commanded_velocity
     nav_.commandedVelocity(t, surge_sway.x(), surge_sway.y());
   }
-  // Another absolute position fix taken at t (the AUV's GPS at the surface), straight into the filter; true when
-  // it went in (not gated).
-  bool positionFix(double t, const Eigen::Vector3d& ned, const Eigen::Matrix3d& cov) { return nav_.usblFix(t, ned, cov); }
+  // The AUV's own GPS fix at the surface (/auv/gps/fix), placed in the site's frame, straight into the filter;
+  // true when it went in (not gated).
+  bool gpsFix(double t, const geo::LatLonAlt& fix, double sigma) {
+    return nav_.gpsFix(t, site_.toNed(fix).head<2>(), sigma);
+  }
   // One simulation step at t: the transceiver's serial traffic (the acoustic replies from both vehicles' true
   // poses), fixes placed once the relayed USV pose has reached their time, into the filter.
   void step(double t, const VehicleState& usv_truth, const VehicleState& auv_truth);

@@ -87,6 +87,9 @@ class AuvNavigator {
   // guidance's desired surge: a dynamic-positioning hold's thrust is no speed demand (its desired surge of 0 read
   // as "still in the water" made every fix's motion current; the aColor holding at the surface chased it 130 m).
   bool commandedVelocity(double t, double surge, double sway);
+  // A GPS fix at the surface (the Girona500's), north and east [m] with its sigma per axis: a position fix like a
+  // USBL one, horizontal only (the depth sensor gives the depth; the fix's is taken as unknown).
+  bool gpsFix(double t, const Eigen::Vector2d& ne, double sigma);
   bool predict(double t);                                       // propagate the filter to t
   // The estimate at t (extrapolated from the latest state, or from the history for an earlier t); const.
   AuvNavEstimate estimate(double t) const;

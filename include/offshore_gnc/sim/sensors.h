@@ -329,6 +329,33 @@ class Dvl {
   Eigen::Vector3d offset_;
 };
 
+// ---------------------------------------------------------------- AUV GPS at the surface
+// The Girona500's GPS (COLA2's navigator fuses it at the surface; IQUA Robotics' data sheet lists GPS among the
+// standard sensors): a fix while the antenna is out of the water (the vehicle no deeper than max_depth), white
+// noise on each horizontal axis of a consumer receiver. The aColor (a BlueROV2-class frame on ArduSub) has none.
+struct SurfaceGpsConfig {
+  double rate_hz = 1.0;    // fixes per second at the surface
+  double sigma = 1.5;      // horizontal, each axis [m]
+  double max_depth = 0.3;  // deeper, the antenna is under water: no fix [m]
+  static const ParamTable<SurfaceGpsConfig>& table();  // surface_gps/...
+};
+struct SurfaceGpsReading {
+  double t;
+  geo::LatLonAlt fix;
+  double sigma;  // [m], each horizontal axis
+};
+class SurfaceGps {
+ public:
+  SurfaceGps(const SurfaceGpsConfig& cfg, const geo::LocalNed& frame, std::uint64_t seed);
+  std::optional<SurfaceGpsReading> measure(const VehicleState& s);  // nothing under water
+
+ private:
+  SurfaceGpsConfig cfg_;
+  geo::LocalNed frame_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> n_{0.0, 1.0};
+};
+
 // ---------------------------------------------------------------- AUV navigation estimate (simulation only)
 // Stands in for a DVL-aided INS (e.g. COLA2's navigator on Girona500): ground truth plus white noise and a
 // horizontal random-walk drift, the error such a filter shows between USBL fixes. Simulation only.

@@ -126,6 +126,7 @@ class AuvSimulation {
     DepthConfig depth;
     AhrsConfig ahrs;
     DvlConfig dvl;  // used only by a Girona500 model (auv.type): the aColor has no DVL
+    SurfaceGpsConfig surface_gps;  // the same: the Girona500's GPS at the surface
     InsConfig ins;
     double odom_rate_hz = 20.0;
     models::AuvParams auv = models::AuvParams::girona500();
@@ -137,6 +138,7 @@ class AuvSimulation {
     std::optional<AhrsReading> ahrs;
     std::optional<DepthReading> depth;
     std::optional<DvlReading> dvl;     // Girona500 only (hasDvl())
+    std::optional<SurfaceGpsReading> gps;  // Girona500 only, at the surface
     std::optional<VehicleState> odom;  // navigation estimate (INS stand-in)
     bool sonar = false;                // beam() holds a new beam
   };
@@ -163,10 +165,11 @@ class AuvSimulation {
   DepthSensor depth_;
   Ahrs ahrs_;
   Dvl dvl_;
+  SurfaceGps gps_;
   InsEstimate ins_;
   SonarBeamReading beam_;
   Outputs out_;
-  long step_ = 0, sonar_every_, depth_every_, ahrs_every_, dvl_every_, odom_every_;
+  long step_ = 0, sonar_every_, depth_every_, ahrs_every_, dvl_every_, gps_every_, odom_every_;
   bool has_dvl_;
   Counters counters_;
 };

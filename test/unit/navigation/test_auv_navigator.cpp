@@ -451,6 +451,8 @@ TEST(AuvNavigator, RefusesNonFiniteInput) {
   no(nav.commandedVelocity(nan, 1.0, 0.0));
   no(nav.commandedVelocity(0.5, 1.0, nan));
   no(nav.commandedVelocity(0.5, -inf, 0.0));
+  no(nav.gpsFix(0.5, Eigen::Vector2d(1.0, 2.0), nan));
+  no(nav.gpsFix(0.5, Eigen::Vector2d(nan, 2.0), 1.5));
   no(nav.predict(nan));
   EXPECT_EQ(nav.counters().get("bad_input"), static_cast<std::uint64_t>(refused));
   EXPECT_EQ(nav.counters().get("fix_accepted"), 1u);

@@ -203,3 +203,41 @@ TEST(Dvl, BottomLockOnlyBetweenItsAltitudes) {
   bad.min_altitude = 80.0;  // above max_altitude
   EXPECT_THROW(Dvl(bad, 1), ConfigError);
 }
+
+TEST(SurfaceGps, FixesOnlyAtTheSurfaceWithTheirNoise) {
+  // The Girona500's GPS: a fix while the antenna is out of the water, white noise of `sigma` on each horizontal
+  // axis about the true position, in the site's frame.
+  const geo::LocalNed site(geo::LatLonAlt{61.45, 23.73, 0.0});
+  SurfaceGpsConfig c;
+  SurfaceGps gps(c, site, 3);
+  VehicleState s;
+  s.position = Eigen::Vector3d(20.0, -5.0, 0.1);
+  std::vector<double> n, e;
+  for (int i = 0; i < 4000; ++i) {
+    const auto r = gps.measure(s);
+    ASSERT_TRUE(r.has_value());
+    const Eigen::Vector3d ned = site.toNed(r->fix);
+    n.push_back(ned.x());
+    e.push_back(ned.y());
+  }
+  EXPECT_NEAR(mean(n), 20.0, 0.1);
+  EXPECT_NEAR(mean(e), -5.0, 0.1);
+  EXPECT_NEAR(sd(n), c.sigma, 0.1 * c.sigma);
+  EXPECT_NEAR(sd(e), c.sigma, 0.1 * c.sigma);
+  s.position.z() = c.max_depth + 0.05;  // the antenna under water
+  EXPECT_FALSE(gps.measure(s).has_value());
+  // the simulation gives it on a Girona500 at the surface, at its rate, and never on the aColor
+  Scenario sc;
+  sc.auv.depth = 0.0;
+  AuvSimulation::Config cfg;
+  AuvSimulation g500(sc, cfg);
+  cfg.auv = models::AuvParams::aColor();
+  AuvSimulation acolor(sc, cfg);
+  int g = 0, a = 0;
+  for (int i = 0; i < 1000; ++i) {  // 10 s
+    g += g500.step().gps.has_value();
+    a += acolor.step().gps.has_value();
+  }
+  EXPECT_NEAR(g, 10, 1);
+  EXPECT_EQ(a, 0);
+}
