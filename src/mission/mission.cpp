@@ -123,6 +123,8 @@ const ParamTable<AuvMissionParams>& AuvMissionParams::table() {
       .number("surface_depth", &P::surface_depth, 0.05, 5.0, "m", "shallower than this the AUV is at the surface")
       .number("surface_clearance", &P::surface_clearance, 0.0, 500.0, "m",
               "surface at least this far from where the USV holds or is bound by its last status (moving at depth first)")
+      .number("overhead_clearance", &P::overhead_clearance, 0.0, 500.0, "m",
+              "ascending, hold the depth while the USV (its reported position) is closer than this")
       .number("station_radius", &P::station_radius, 0.1, 50.0, "m",
               "on station at its hold point, and stationary at the surface, within this");
   return t;
@@ -163,6 +165,14 @@ void AuvMission::tick(double t) {
     clearing_ = false;
     ramp_t_ = t;
   }
+  // the USV over the AUV (a fresh report): the depth held until it has gone (not the supervisor's surface, with no
+  // USV status to judge by, nor a vehicle already at the surface)
+  if (mind_usv_ && usv_pos_ && pose_ && t - usv_t_ <= p_.usv_timeout && pose_->z() >= p_.surface_depth &&
+      (pose_->head<2>() - *usv_pos_).norm() < p_.overhead_clearance) {
+    counters_.increment("ascent_paused_usv_overhead");
+    ramp_t_ = t;
+    return;
+  }
   double d = std::max(0.0, depth_ref_ - p_.ascent_rate * (t - ramp_t_));
   ramp_t_ = t;
   // a vehicle the safety supervisor already brought up is not sent down again (1 m: far beyond the depth
@@ -194,6 +204,7 @@ void AuvMission::ascend(double t, const std::string& why, bool clear_of_usv) {
   // up where it holds (the spot), or where it is when it was not holding one
   Eigen::Vector2d up = hold_.allFinite() ? Eigen::Vector2d(hold_.head<2>()) : Eigen::Vector2d(at.head<2>());
   const Eigen::Vector2d away = up - (usv_ ? *usv_ : up);
+  mind_usv_ = clear_of_usv;
   clearing_ = clear_of_usv && usv_ && away.norm() < p_.surface_clearance;
   if (clearing_) {  // surface clear of the USV's hull: move away from it at depth first, facing the way
     const Eigen::Vector2d dir = away.norm() > 1e-3 ? Eigen::Vector2d(away.normalized())
@@ -225,6 +236,7 @@ void AuvMission::onUsvStatus(UsvPhase phase, const Eigen::Vector2d& usv_ned, con
   usv_phase_ = phase;
   if (usv_station.allFinite()) usv_ = usv_station;
   else if (usv_ned.allFinite()) usv_ = usv_ned;
+  if (usv_ned.allFinite()) usv_pos_ = usv_ned;
   const bool arrived = phase == UsvPhase::Arrived || phase == UsvPhase::Recovery || phase == UsvPhase::Recovered;
   if (phase_ == AuvPhase::TargetFound && arrived) ascend(t, "the USV has arrived");
   if (phase_ == AuvPhase::Surfaced && phase == UsvPhase::Recovered) phase_ = AuvPhase::Recovered;
@@ -400,7 +412,11 @@ const ParamTable<UsvMissionParams>& UsvMissionParams::table() {
               "the run-in (the Girona500's length; the aColor's 1.0 m fits in it)")
       .number("recovery_clearance", &P::recovery_clearance, 0.0, 100.0, "m",
               "recovering, the hull closing in and holding keeps this clear of an obstacle's extent (the side chosen)")
-      .number("settle_time", &P::settle_time, 0.0, 3600.0, "s", "both vehicles stationary this long: RECOVERED");
+      .number("settle_time", &P::settle_time, 0.0, 3600.0, "s", "both vehicles stationary this long: RECOVERED")
+      .number("station_time", &P::station_time, 0.0, 3600.0, "s",
+              "arrived, on station at the target at least this long before leaving to recover the surfaced AUV")
+      .number("station_timeout", &P::station_timeout, 0.0, 1e5, "s",
+              "arrived but never on station this long: it goes to recover the AUV all the same (counted)");
   return t;
 }
 
@@ -537,6 +553,7 @@ bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
     path_.clear();
     phase_ = UsvPhase::Arrived;
     arrived_ = true;
+    arrived_t_ = t;
     ++path_version_;
     path_due_ = holdPath(*station_, heading_);
     return false;
@@ -555,10 +572,11 @@ bool UsvMission::onTarget(const Eigen::Vector2d& target, double t) {
   return true;
 }
 
-void UsvMission::onPathFinished(double /*t*/) {
+void UsvMission::onPathFinished(double t) {
   if (phase_ != UsvPhase::Transit) return;
   phase_ = UsvPhase::Arrived;
   arrived_ = true;
+  arrived_t_ = t;
 }
 
 void UsvMission::onAuvStatus(AuvPhase phase, const Eigen::Vector3d& auv_ned, bool stationary, double t) {
@@ -587,6 +605,11 @@ void UsvMission::recover(double t) {
   if (!pose_) return;
   const bool surfaced = auv_phase_ && (*auv_phase_ == AuvPhase::Surfaced || *auv_phase_ == AuvPhase::Recovered) &&
                         auv_pos_.allFinite();
+  if (phase_ == UsvPhase::Arrived && surfaced) {  // the hold at the target first
+    const bool held = !std::isnan(on_station_since_) && t - on_station_since_ >= p_.station_time;
+    if (!held && t - arrived_t_ < p_.station_timeout) return;
+    if (!held) counters_.increment("left_station_unsettled");
+  }
   if ((phase_ == UsvPhase::Arrived || phase_ == UsvPhase::StationKeeping) && surfaced) {
     phase_ = UsvPhase::Recovery;
     // the side away from the current: the dynamic positioning has turned the bow into it, so downstream is astern;

@@ -62,6 +62,10 @@ struct AuvMissionParams {
   double ascent_rate = 0.1;          // the depth reference rises at most this fast [m/s]
   double surface_depth = 0.5;        // shallower than this the AUV is at the surface [m]
   double surface_clearance = 10.0;   // surface at least this far from where the USV holds or is bound [m]
+  // Ascending, the depth is held while the USV itself (its reported position, not its station) is closer than
+  // this: a USV carried off its station by a strong set came over the rising Girona500 (evaluation seed 5000 run 13,
+  // 0.32 m/s and 7 m/s of wind: the hull touched it at 323 s). [m]
+  double overhead_clearance = 6.0;
   double station_radius = 1.0;       // on station (and, at the surface, stationary) this close to its point [m]
   CoverageArea coverage;             // from the mission config or, in simulation, the scenario
   static const ParamTable<AuvMissionParams>& table();  // without `coverage` (read under its own prefix)
@@ -142,12 +146,13 @@ class AuvMission {
   std::optional<Eigen::Vector3d> target_, target_due_, target_sent_, pose_;
   std::optional<std::vector<Eigen::Vector3d>> path_due_;
   std::optional<Eigen::Vector2d> usv_;  // where the USV is, or will hold
+  std::optional<Eigen::Vector2d> usv_pos_;  // where the USV is (its last status)
   std::optional<UsvPhase> usv_phase_;
   Eigen::Vector3d hold_;
   std::string why_ascent_;
   double start_time_ = 0.0, detection_time_, first_tick_ = 0.0, found_t_ = 0.0, usv_t_ = -1e300, yaw_ = 0.0;
   double hold_heading_ = 0.0, on_station_since_, ascent_t_, surfaced_t_, ramp_t_ = 0.0, depth_ref_ = 0.0;
-  bool ticked_ = false, following_ = false, clearing_ = false;
+  bool ticked_ = false, following_ = false, clearing_ = false, mind_usv_ = true;
   Counters counters_;
 };
 
@@ -164,6 +169,12 @@ struct UsvMissionParams {
   double auv_extent = 1.5;          // the surfaced AUV's size for guidance's safety box about it (keepClear) [m]
   double recovery_clearance = 3.0;  // the hull, holding and closing in, keeps this clear of an obstacle's extent [m]
   double settle_time = 10.0;        // both vehicles stationary this long: RECOVERED [s]
+  // Arrived, the USV holds on station at the target at least station_time (from first coming within station_radius)
+  // before it leaves to recover a surfaced AUV; one that could not get on station goes after station_timeout.
+  // (It had left as soon as the AUV surfaced: an aColor found and surfaced within 40 s of the USV's arrival, and the
+  // USV, still swinging onto its point in 7-8 m/s of wind, left 5-6 m off it: off_station, evaluation seed 5000.)
+  double station_time = 30.0;       // [s]
+  double station_timeout = 180.0;   // [s]
   static const ParamTable<UsvMissionParams>& table();
   void validate() const;
 };
@@ -261,6 +272,7 @@ class UsvMission {
   int path_version_ = 0;
   double last_peer_ = 0.0, heading_ = 0.0, last_manual_ = -1e300, distance_to_go_, on_station_since_;
   bool peer_seen_ = false, arrived_ = false;
+  double arrived_t_ = -1e300;  // when the phase became ARRIVED
   // the AUV's last status, and the recovery planned against it
   std::optional<AuvPhase> auv_phase_;
   Eigen::Vector2d auv_pos_ = kNoPoint, auv_planned_ = kNoPoint, recovery_point_ = kNoPoint, recovery_axis_ = kNoPoint;

@@ -421,6 +421,29 @@ TEST(AuvMission, ComesUpWhenTheUsvArrivesClearOfItAtTheBoundedRate) {
   EXPECT_TRUE(m.finished());
 }
 
+TEST(AuvMission, HoldsItsDepthWhileTheUsvIsOverIt) {
+  // The USV carried off its station by a strong set over the rising AUV (evaluation seed 5000 run 13): the depth is
+  // held while the USV's reported position is within overhead_clearance (6 m), the rise goes on once it has gone.
+  AuvMission m(auvParams());
+  holding(m);
+  m.onUsvStatus(UsvPhase::Arrived, {37, 3}, {38, 3}, 100.0);
+  ASSERT_EQ(m.phase(), AuvPhase::Ascent);
+  (void)ascend(m, 110.0, 120.0);  // at its clear point (28, 3), rising
+  const double before = m.holdPoint().z();
+  ASSERT_LT(before, 3.0);
+  for (double t = 120.5; t <= 140.0; t += 0.5) {
+    m.onUsvStatus(UsvPhase::Arrived, {30, 4}, {38, 3}, t);  // 2.2 m from the AUV
+    EXPECT_TRUE(ascend(m, t, t).empty()) << t;
+  }
+  EXPECT_DOUBLE_EQ(m.holdPoint().z(), before);
+  EXPECT_GT(m.counters().get("ascent_paused_usv_overhead"), 0u);
+  m.onUsvStatus(UsvPhase::Arrived, {37, 3}, {38, 3}, 140.5);  // back on its station, 9 m off
+  const std::vector<double> depths = ascend(m, 141.0, 200.0);
+  ASSERT_FALSE(depths.empty());
+  EXPECT_DOUBLE_EQ(depths.back(), 0.0);
+  EXPECT_EQ(m.phase(), AuvPhase::Surfaced);
+}
+
 TEST(AuvMission, ComesUpAfterTheHoldTimeoutOrASilentUsv) {
   AuvMissionParams p = auvParams();
   p.hold_timeout = 100.0;
@@ -524,6 +547,39 @@ TEST(UsvMission, RecoversTheSurfacedAuvDownstreamBowOn) {
   EXPECT_EQ(m.phase(), UsvPhase::Recovered);
   EXPECT_TRUE(m.finished());
   EXPECT_DOUBLE_EQ(m.recoveredAt(), 226.0);
+}
+
+// The AUV surfacing right after the USV's arrival does not cut the hold at the target short: the USV leaves for it
+// once it has held on station station_time (30 s), or, never on station, after station_timeout (180 s, counted).
+TEST(UsvMission, HoldsAtTheTargetItsStationTimeBeforeTheRecovery) {
+  UsvMission m;
+  m.setHullReach({5.3, 2.7, 1.3});
+  m.onPose({0, 3}, -kPi / 2, 0.0);
+  ASSERT_TRUE(m.onTarget({45, 3}, 1.0));
+  m.onPathFinished(100.0);
+  ASSERT_EQ(m.phase(), UsvPhase::Arrived);
+  m.onPose({38, 3}, -kPi / 2, 100.5);  // 4 m short of its station (42, 3): swinging onto it
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 101.0);
+  EXPECT_EQ(m.phase(), UsvPhase::Arrived);
+  m.onPose({42, 3}, -kPi / 2, 110.0);  // on station from 110 s
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 139.5);
+  EXPECT_EQ(m.phase(), UsvPhase::Arrived);
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 140.0);
+  EXPECT_EQ(m.phase(), UsvPhase::Recovery);
+  EXPECT_EQ(m.counters().get("left_station_unsettled"), 0u);
+  // never on station: after station_timeout from the arrival
+  UsvMission n;
+  n.onPose({0, 3}, -kPi / 2, 0.0);
+  ASSERT_TRUE(n.onTarget({45, 3}, 1.0));
+  n.onPathFinished(100.0);
+  for (double t = 100.5; t < 280.0; t += 10.0) {
+    n.onPose({38, 3}, -kPi / 2, t);
+    n.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, t);
+    EXPECT_EQ(n.phase(), UsvPhase::Arrived) << t;
+  }
+  n.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 280.0);
+  EXPECT_EQ(n.phase(), UsvPhase::Recovery);
+  EXPECT_EQ(n.counters().get("left_station_unsettled"), 1u);
 }
 
 // A buoy 14 m downstream of the AUV lies under the close-in: dynamic positioning's straight run from the run-in plans
