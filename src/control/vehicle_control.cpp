@@ -179,6 +179,8 @@ const ParamTable<AcolorControlParams>& AcolorControlParams::table() {
       .nest("yaw/", &P::yaw, PidGains::table())
       .nest("heave/", &P::heave, PidGains::table())
       .nest("hold/", &P::hold, PidGains::table())
+      .flag("hold/drift_without_fix", &P::drift_without_fix,
+            "while the navigation has no position fix the hold drifts (neutral); false: it holds on its dead reckoning")
       .integer("rc/num_channels", &P::num_channels, 1, 18, "RC channels sent to the flight controller")
       .integer("rc/heave", &P::channel_heave, 1, 18, "1-based channel of heave (throttle)")
       .integer("rc/yaw", &P::channel_yaw, 1, 18, "1-based channel of yaw")
@@ -234,7 +236,7 @@ std::vector<std::uint16_t> AcolorController::command(const VehicleState& s, cons
     counters_.increment(stateFinite(s) ? "bad_reference" : "nan_state");
     return ch;  // neutral on every channel
   }
-  const bool blind = r.mode == ReferenceMode::kHold && fix_lost_;
+  const bool blind = r.mode == ReferenceMode::kHold && fix_lost_ && p_.drift_without_fix;
   if (blind) counters_.increment("hold_without_fix");
   if (r.mode != ReferenceMode::kHold || blind) {
     north_.reset();

@@ -21,6 +21,7 @@
 #include "offshore_gnc/ThrusterSetpoints.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/faults.h"
+#include "offshore_gnc/ros/nav_sat_fix.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/sim/simulation.h"
 #include "ros_sim.h"
@@ -165,20 +166,9 @@ class AuvSimNodelet : public nodelet::Nodelet {
       m.twist.covariance[0] = m.twist.covariance[7] = m.twist.covariance[14] = vv;  // angular: not measured (0)
       dvl_pub_.publish(m);
     }
-    if (out.gps) {
-      sensor_msgs::NavSatFix f;
-      f.header.stamp = stamp;
-      f.header.frame_id = "auv/gps";
-      f.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
-      f.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
-      f.latitude = out.gps->fix.lat_deg;
-      f.longitude = out.gps->fix.lon_deg;
-      f.altitude = out.gps->fix.alt_m;
-      const double var = out.gps->sigma * out.gps->sigma;
-      f.position_covariance = {var, 0, 0, 0, var, 0, 0, 0, 4 * var};
-      f.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
-      gps_pub_.publish(f);
-    }
+    if (out.gps)
+      gps_pub_.publish(
+          ros_util::navSatFix(out.gps->fix, out.gps->sigma, stamp, "auv/gps", sensor_msgs::NavSatStatus::STATUS_FIX));
     if (out.sonar) {
       const auto& b = sim_->beam();
       SonarBeam m;

@@ -28,6 +28,7 @@
 #include "offshore_gnc/WaterjetStatus.h"
 #include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/faults.h"
+#include "offshore_gnc/ros/nav_sat_fix.h"
 #include "offshore_gnc/models/params_yaml.h"
 #include "offshore_gnc/sim/simulation.h"
 #include "ros_sim.h"
@@ -170,18 +171,8 @@ class UsvSimNodelet : public nodelet::Nodelet {
       v.twist.linear.y = out.gps->velocity_ned.x();
       v.twist.angular.z = -out.gps->rate_of_turn;
       vel_pub_.publish(v);
-      sensor_msgs::NavSatFix f;
-      f.header.stamp = stamp;
-      f.header.frame_id = "usv/gps";
-      f.status.status = sensor_msgs::NavSatStatus::STATUS_SBAS_FIX;
-      f.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
-      f.latitude = out.gps->fix.lat_deg;
-      f.longitude = out.gps->fix.lon_deg;
-      f.altitude = out.gps->fix.alt_m;
-      const double var = out.gps->position_sigma * out.gps->position_sigma;
-      f.position_covariance = {var, 0, 0, 0, var, 0, 0, 0, 4 * var};
-      f.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
-      gps_pub_.publish(f);
+      gps_pub_.publish(ros_util::navSatFix(out.gps->fix, out.gps->position_sigma, stamp, "usv/gps",
+                                           sensor_msgs::NavSatStatus::STATUS_SBAS_FIX));
     }
     const auto& p = sim_->model().params();
     for (int i = 0; i < 2; ++i) {  // each unit's status frame, as the gateway decodes it

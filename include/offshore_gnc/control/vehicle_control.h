@@ -79,6 +79,7 @@ struct AcolorControlParams {
   // thrusters. All zero by default: the thesis' aColor had no dynamic positioning (it stopped and held its depth);
   // config/control/acolor_sim.yaml sets the simulated vehicle's.
   PidGains hold{0.0, 0.0, 0.0, 1.0, 0.3};
+  bool drift_without_fix = true;  // while the navigation has no fix, the hold drifts (setFixLost); false: it holds on
   int channel_heave = 3, channel_yaw = 4, channel_surge = 5, channel_sway = 6;  // 1-based RC channels (ArduSub's)
   int num_channels = 8;
   double dt = 0.1;
