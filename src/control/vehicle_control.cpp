@@ -149,17 +149,21 @@ void UsvController::keepYawAuthority(JoystickOut& out) const {
   out.sway *= lo;
 }
 
+namespace {
+// The body wrench (X, Y, Z, N) the model's thrusters give for normalised axis commands through the mixer.
+Eigen::Vector4d mixedWrench(const models::AuvModel& m, const Eigen::Vector4d& axes) {
+  const Eigen::VectorXd cmd = models::mixAxes(m.tcm(), axes);
+  Eigen::VectorXd f(m.thrusters());
+  for (int i = 0; i < m.thrusters(); ++i) f(i) = m.thrust(i, cmd(i));
+  return m.tcm() * f;
+}
+}  // namespace
+
 double acolorSurgeCommand(const models::AuvModel& model, double speed) {
   const models::AuvParams& p = model.params();
   if (!std::isfinite(speed) || speed <= 0.0) return 0.0;
   const double drag = std::abs(p.X_u) * speed + std::abs(p.X_uu) * speed * speed;
-  const Eigen::RowVectorXd row = model.tcm().row(0);
-  const double share = row.cwiseAbs().maxCoeff();
-  auto thrust = [&](double command) {
-    double f = 0.0;
-    for (int i = 0; i < model.thrusters(); ++i) f += row(i) * model.thrust(i, command * row(i) / share);
-    return f;
-  };
+  auto thrust = [&](double command) { return mixedWrench(model, Eigen::Vector4d(command, 0.0, 0.0, 0.0)).x(); };
   if (thrust(1.0) <= drag) return 1.0;
   double lo = 0.0, hi = 1.0;  // the thrust does not fall with the command (monotonic curves): bisection
   for (int k = 0; k < 40; ++k) {
@@ -221,13 +225,10 @@ std::vector<std::uint16_t> AcolorController::update(const VehicleState& s, const
 
 void AcolorController::predictWater(const std::vector<std::uint16_t>& ch) {
   if (!p_.model) return;
-  const models::AuvModel& m = *p_.model;
   auto axis = [&](int channel) { return (ch[channel - 1] - 1500.0) / 400.0; };
-  const Eigen::VectorXd cmd = models::mixAxes(
-      m.tcm(), Eigen::Vector4d(axis(p_.channel_surge), axis(p_.channel_sway), axis(p_.channel_heave), axis(p_.channel_yaw)));
-  Eigen::VectorXd f(m.thrusters());
-  for (int i = 0; i < m.thrusters(); ++i) f(i) = m.thrust(i, cmd(i));
-  water_ = m.waterVelocityStep(water_, (m.tcm() * f).head<2>(), p_.dt);
+  const Eigen::Vector4d wrench = mixedWrench(
+      *p_.model, {axis(p_.channel_surge), axis(p_.channel_sway), axis(p_.channel_heave), axis(p_.channel_yaw)});
+  water_ = p_.model->waterVelocityStep(water_, wrench.head<2>(), p_.dt);
 }
 
 std::vector<std::uint16_t> AcolorController::command(const VehicleState& s, const MotionReference& r) {
@@ -320,11 +321,8 @@ void Girona500Controller::setParams(const Girona500ControlParams& p) {
 }
 
 Girona500Out Girona500Controller::update(const VehicleState& s, const MotionReference& r) {
-  Girona500Out out = command(s, r);
-  if (p_.model && out.alloc.thrust.size() == p_.tcm.cols())
-    water_ = p_.model->waterVelocityStep(water_, (p_.tcm * out.alloc.thrust).head<2>(), p_.dt);
-  else
-    water_ = p_.model ? p_.model->waterVelocityStep(water_, Eigen::Vector2d::Zero(), p_.dt) : Eigen::Vector2d::Zero();
+  Girona500Out out = command(s, r);  // every path allocates (idle: zero thrust, so the speed decays)
+  if (p_.model) water_ = p_.model->waterVelocityStep(water_, (p_.tcm * out.alloc.thrust).head<2>(), p_.dt);
   return out;
 }
 
