@@ -19,6 +19,7 @@ namespace {
 constexpr double kG = 9.81;
 constexpr int kWaveComponents = 16;  // enough for an irregular record; each costs a sin/cos per query
 constexpr int kGustComponents = 20;
+constexpr double kSectionError = 0.0025;  // a SurfaceSection's interpolation error, a fraction of Hs
 
 double sinc(double x) { return std::abs(x) < 1e-6 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }
 
@@ -224,6 +225,55 @@ double Environment::elevation(double t, const Eigen::Vector2d& ne) const {
   double eta = 0.0;
   for (const auto& c : waves_) eta += c.a * std::cos(c.w * t - c.k * x + c.phase);
   return eta;
+}
+
+SurfaceSection Environment::section(double t, const Eigen::Vector2d& centre, double radius) const {
+  SurfaceSection s;
+  s.env_ = this;
+  s.t_ = t;
+  s.travel_ = Eigen::Vector2d(-std::cos(p_.wave_direction), -std::sin(p_.wave_direction));
+  if (waves_.empty()) return s;
+  // cubic Hermite interpolation on the elevation and its slope is off by at most step^4 / 384 max|d4 eta / dx4|
+  // <= step^4 / 384 sum(a k^4): held to kSectionError of Hs
+  double bound = 0.0;
+  for (const auto& c : waves_) bound += c.a * std::pow(c.k, 4);
+  s.step_ = std::pow(384.0 * kSectionError * p_.wave_height / bound, 0.25);
+  s.x0_ = s.travel_.dot(centre) - radius;
+  const auto n = static_cast<std::size_t>(std::ceil(2.0 * radius / s.step_)) + 2;
+  s.eta_.resize(n);
+  s.slope_.resize(n);
+  // each component's phasor a exp(i (w t - k x + phase)) at x0, turned by -k step per sample: no cosine per
+  // sample (fixed-size arrays, so that the turns vectorise); its real part is the elevation, k times its
+  // imaginary part the slope along the travel
+  using Phasors = Eigen::Array<double, kWaveComponents, 1>;
+  Phasors re, im, cr, ci, k;
+  for (int j = 0; j < kWaveComponents; ++j) {
+    const auto& c = waves_[static_cast<std::size_t>(j)];
+    const double ph = c.w * t - c.k * s.x0_ + c.phase, turn = -c.k * s.step_;
+    re[j] = c.a * std::cos(ph);
+    im[j] = c.a * std::sin(ph);
+    cr[j] = std::cos(turn);
+    ci[j] = std::sin(turn);
+    k[j] = c.k;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    s.eta_[i] = re.sum();
+    s.slope_[i] = (k * im).sum();
+    const Phasors r = re * cr - im * ci;
+    im = re * ci + im * cr;
+    re = r;
+  }
+  return s;
+}
+
+double SurfaceSection::operator()(const Eigen::Vector2d& ne) const {
+  if (eta_.empty()) return 0.0;
+  const double u = (travel_.dot(ne) - x0_) / step_;
+  if (!(u >= 0.0) || u >= static_cast<double>(eta_.size() - 1)) return env_->elevation(t_, ne);
+  const auto i = static_cast<std::size_t>(u);
+  const double f = u - static_cast<double>(i), f2 = f * f, f3 = f2 * f;
+  return (2 * f3 - 3 * f2 + 1) * eta_[i] + (f3 - 2 * f2 + f) * step_ * slope_[i] + (3 * f2 - 2 * f3) * eta_[i + 1] +
+         (f3 - f2) * step_ * slope_[i + 1];
 }
 
 VehicleState withWave(const VehicleState& lf, const WaveMotion& w) {

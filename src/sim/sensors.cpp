@@ -196,6 +196,7 @@ void Lidar::scan(const VehicleState& s, LidarScan& out) {
     cos_e[l] = std::cos(cfg_.layer_elevation[l]);
   }
   const double hs = env_ ? env_->significantHeight() : 0.0;
+  const models::SurfaceSection surface = hs > 0.0 ? env_->section(s.t, o, cfg_.max_range) : models::SurfaceSection();
   // whitecaps: the fraction for the wind at this moment (its gusts), once per frame
   const double foam = env_ ? models::whitecapFraction(env_->windSpeed(s.t)) : 0.0;
   for (int b = 0; b < beams_; ++b) {
@@ -219,7 +220,7 @@ void Lidar::scan(const VehicleState& s, LidarScan& out) {
       // (a beam that would not meet even a crest 2 Hs high within range never meets the water)
       if (slope > 0 && zs < 0 && (-zs - 2.0 * hs) / slope <= cfg_.max_range) {
         t_water = -zs / slope;
-        if (hs > 0.0) t_water = std::max(0.0, (-env_->elevation(s.t, o + t_water * d) - zs) / slope);
+        if (hs > 0.0) t_water = std::max(0.0, (-surface(o + t_water * d) - zs) / slope);
       }
       float& range = out.ranges[static_cast<std::size_t>(l) * beams_ + b];
       auto returns = [&](double t) {

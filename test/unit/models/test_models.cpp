@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <complex>
 #include <functional>
 
@@ -345,6 +346,29 @@ TEST(Environment, GustsHaveTheirSigmaAndWavesTheirSignificantHeight) {
   EXPECT_GT(std::abs(env.elevation(100.0, {0, 0}) - env.elevation(105.0, {0, 0})), 1e-3);
 }
 
+
+TEST(Environment, ASurfaceSectionIsTheElevationWithinItsStatedError) {
+  EnvironmentParams p;
+  p.wave_height = 1.2;
+  p.wave_period = 3.0;  // short waves: the shortest component about 2.3 m long
+  p.wave_direction = 0.7;
+  const Environment env(p);
+  const Eigen::Vector2d centre(30.0, -12.0);
+  const SurfaceSection s = env.section(250.0, centre, 64.0);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-64.0, 64.0);
+  double worst = 0.0;
+  for (int i = 0; i < 5000; ++i) {
+    const Eigen::Vector2d q = centre + Eigen::Vector2d(u(rng), u(rng)) * 0.7;
+    worst = std::max(worst, std::abs(s(q) - env.elevation(250.0, q)));
+  }
+  EXPECT_LT(worst, 0.0025 * 1.2);  // the stated 0.25 % of Hs
+  EXPECT_GT(worst, 0.0);  // interpolated, not the exact sum
+  // off the section: exact
+  const Eigen::Vector2d far = centre + Eigen::Vector2d(500.0, 0.0);
+  EXPECT_EQ(s(far), env.elevation(250.0, far));
+  EXPECT_EQ(Environment().section(1.0, centre, 10.0)(centre), 0.0);  // calm
+}
 TEST(Environment, SeaStatesFromTheFieldDayAndBeaufort4) {
   // Remote Sensing 2020, section 5: 30 m^3/s southward through the estuary's 300 m^2, 3.7 m/s from SSW
   const EnvironmentParams f = seaState("field_day");
