@@ -126,7 +126,9 @@ const ParamTable<AuvMissionParams>& AuvMissionParams::table() {
       .number("overhead_clearance", &P::overhead_clearance, 0.0, 500.0, "m",
               "ascending, hold the depth while the USV (its reported position) is closer than this")
       .number("station_radius", &P::station_radius, 0.1, 50.0, "m",
-              "on station at its hold point, and stationary at the surface, within this");
+              "on station at its hold point, and stationary at the surface, within this")
+      .number("still_window", &P::still_window, 1.0, 600.0, "s",
+              "at the surface also stationary when its position stayed within station_radius of their mean this long");
   return t;
 }
 
@@ -228,6 +230,19 @@ void AuvMission::onPose(const Eigen::Vector3d& ned, double yaw, double t) {
   if (phase_ == AuvPhase::TargetFound && std::isnan(on_station_since_) &&
       (ned.head<2>() - hold_.head<2>()).norm() <= p_.station_radius)
     on_station_since_ = t;
+  steady_ = false;
+  if (phase_ != AuvPhase::Surfaced && phase_ != AuvPhase::Recovered) {
+    surface_track_.clear();
+    return;
+  }
+  surface_track_.emplace_back(t, ned.head<2>());
+  while (surface_track_.size() > 1 && surface_track_[1].first <= t - p_.still_window) surface_track_.pop_front();
+  if (t - surface_track_.front().first < p_.still_window) return;  // not watched that long yet
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& s : surface_track_) mean += s.second;
+  mean /= static_cast<double>(surface_track_.size());
+  steady_ = std::all_of(surface_track_.begin(), surface_track_.end(),
+                        [&](const auto& s) { return (s.second - mean).norm() <= p_.station_radius; });
 }
 
 void AuvMission::onUsvStatus(UsvPhase phase, const Eigen::Vector2d& usv_ned, const Eigen::Vector2d& usv_station,
@@ -249,7 +264,7 @@ void AuvMission::onSafetySurface(double t) {
 
 bool AuvMission::stationary() const {
   return (phase_ == AuvPhase::Surfaced || phase_ == AuvPhase::Recovered) && pose_ &&
-         (pose_->head<2>() - hold_.head<2>()).norm() <= p_.station_radius;
+         ((pose_->head<2>() - hold_.head<2>()).norm() <= p_.station_radius || steady_);
 }
 
 void AuvMission::start(double t) {
