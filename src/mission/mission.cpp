@@ -670,15 +670,18 @@ void UsvMission::setObstacles(const std::vector<guidance::SbbObstacle>& obstacle
       obstacles_.push_back(o);
 }
 
+bool UsvMission::sweepClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach) const {
+  for (const auto& o : obstacles_)
+    if (segmentDistance(a, b, o.origin) < 0.5 * std::max(o.length, o.width) + reach + p_.recovery_clearance) return false;
+  return true;
+}
+
 Eigen::Vector2d UsvMission::recoveryAxis(const Eigen::Vector2d& auv) {
   // the hull from its stern at the run-in to its bow holding recovery_distance off the AUV
   const double run = hull_.astern + hull_.ahead + p_.waypoint_spacing;
   auto clear = [&](const Eigen::Vector2d& up) {
-    const Eigen::Vector2d bow = auv - p_.recovery_distance * up, stern = bow - run * up;
-    for (const auto& o : obstacles_)
-      if (segmentDistance(stern, bow, o.origin) < 0.5 * std::max(o.length, o.width) + hull_.abeam + p_.recovery_clearance)
-        return false;
-    return true;
+    const Eigen::Vector2d bow = auv - p_.recovery_distance * up;
+    return sweepClear(bow - run * up, bow, hull_.abeam);
   };
   if (recovery_axis_.allFinite() && clear(recovery_axis_)) return recovery_axis_;
   // from the current's, by 30 degrees either way: of each pair first the side whose hold is nearer the USV
@@ -696,7 +699,11 @@ Eigen::Vector2d UsvMission::recoveryAxis(const Eigen::Vector2d& auv) {
 }
 
 void UsvMission::planRecovery(double t) {
+  const Eigen::Vector2d last_axis = recovery_axis_;
   recovery_axis_ = recoveryAxis(auv_pos_);
+  // Another side (an obstacle seen since blocks the last): from its run-in again, not straight across (evaluation
+  // seed 7000 run 962: at the first side's run-in, the second side's point 16 m off across a buoy, held for at once).
+  if (last_axis.allFinite() && last_axis.dot(recovery_axis_) < std::cos(deg2rad(10.0))) alongside_ = false;
   const Eigen::Vector2d auv = auv_pos_, up = recovery_axis_, u = *pose_;
   const double off = p_.recovery_distance + hull_.ahead;  // the reference point's distance: the bow at recovery_distance
   const double heading = std::atan2(up.y(), up.x());     // bow on to the AUV
@@ -710,8 +717,13 @@ void UsvMission::planRecovery(double t) {
   // Closing in only to an AUV that holds its point (auvHeld): one that moves is kept at the run-in's distance, the
   // run-in moved with it (a Girona500 that could not hold against 0.5 m/s drifted onto the USV holding downstream of
   // it and touched the hull; an aColor swinging +-3 m about its point came within 0.3 m of it).
+  // The straight close-in from where it is swings the whole hull round on dynamic positioning: only when that
+  // sweep (the hull's longest reach either side of the line) is clear of what guidance plans round (evaluation
+  // seed 7000 run 962: 7 m from the point and downstream of it, but across a buoy; the run-in's axis was clear).
   const Eigen::Vector2d from_point = u - recovery_point_;
-  alongside_ = auvHeld(t) && (alongside_ || (from_point.dot(up) <= 0.0 && from_point.norm() <= p_.waypoint_spacing));
+  const double sweep = std::max({hull_.ahead, hull_.astern, hull_.abeam});
+  alongside_ = auvHeld(t) && (alongside_ || (from_point.dot(up) <= 0.0 && from_point.norm() <= p_.waypoint_spacing &&
+                                             sweepClear(u, recovery_point_, sweep)));
   if (alongside_) {
     station_ = recovery_point_;
     setPath(holdPath(recovery_point_, heading));

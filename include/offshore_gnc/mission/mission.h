@@ -265,6 +265,8 @@ class UsvMission {
   // The recovery's axis (from the run-in to the AUV): the last one while still clear of the obstacles, else the
   // clear one nearest to the current's (within 90 degrees: never upstream of the AUV); none clear: the current's.
   Eigen::Vector2d recoveryAxis(const Eigen::Vector2d& auv);
+  // No obstacle guidance plans round within `reach` + recovery_clearance of the segment a-b.
+  bool sweepClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach) const;
   bool auvHeld(double t) const;  // the AUV has reported itself stationary for settle_time, the last report fresh
   void recover(double t);                           // RECOVERY's checks, each tick
 

@@ -637,6 +637,26 @@ TEST(UsvMission, TurnsTheRecoveryAxisOffAnObstacleUnderTheCloseIn) {
   EXPECT_EQ(m.counters().get("recovery_side_blocked"), 1u);
 }
 
+// A buoy seen on the way blocks the axis chosen when the AUV surfaced: at that axis' run-in the mission takes another
+// side, and goes to that side's run-in instead of holding straight across for its point (evaluation seed 7000 run
+// 962: the hull touched the buoy between).
+TEST(UsvMission, AnotherSideIsClosedInFromItsOwnRunIn) {
+  UsvMission m;
+  arrived(m);
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
+  ASSERT_EQ(m.phase(), UsvPhase::Recovery);
+  EXPECT_LT((m.recoveryPoint() - Eigen::Vector2d(50, 9.3)).norm(), 1e-9);
+  (void)m.takePath();
+  m.setObstacles({{7, {50, 13}, 0.6, 0.6}});  // under the close-in
+  m.onPose({50, 18}, -kPi / 2, 200.0);        // at the run-in
+  for (double t = 200.0; t <= 210.0; t += 0.5) m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, t);
+  const Eigen::Vector2d up = (Eigen::Vector2d(50, 0) - m.recoveryPoint()).normalized();
+  EXPECT_GT(std::acos(up.dot(Eigen::Vector2d(0, -1))), deg2rad(20.0));  // another side
+  auto path = m.takePath();
+  ASSERT_TRUE(path);
+  EXPECT_LT((path->back() - (m.recoveryPoint() - 10.0 * up)).norm(), 1e-9);  // its run-in, not its point
+}
+
 TEST(UsvMission, KeepsItsDistanceFromAnAuvThatMoves) {
   UsvMission m;
   arrived(m);
