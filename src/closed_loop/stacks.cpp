@@ -419,7 +419,10 @@ void AuvStack::step() {
     if (out.ahrs) usbl_->ahrs(out.ahrs->t, out.ahrs->roll, out.ahrs->pitch, out.ahrs->yaw, out.ahrs->angular_rate);
     if (out.dvl) usbl_->dvl(out.dvl->t, out.dvl->velocity);
     usbl_->step(t, usv_truth_, sim_.state());
-    if (out.gps) usbl_->gpsFix(out.gps->t, out.gps->fix, out.gps->sigma);  // /auv/gps/fix (sim::SurfaceGps)
+    if (out.gps) {  // /auv/gps/fix (sim::SurfaceGps): the AuvNavigation and AuvMission nodelets both take it
+      usbl_->gpsFix(out.gps->t, out.gps->fix, out.gps->sigma);
+      if (cfg_.mission_enabled) mission_.onSurfaceFix(out.gps->t);
+    }
     for (double s : usbl_->acceptedNow()) sup.heard(safety::Source::kUsbl, s);
     if (step_ % navigation_every_ == 0) {
       control_.onFixLost(usbl_->status(t) == navigation::NavStatus::kFixLost);  // /auv/navigation/status

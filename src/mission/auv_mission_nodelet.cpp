@@ -5,6 +5,7 @@
 // surface is where the USV recovers it). Thin: parameters, messages, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <nav_msgs/Odometry.h>
+#include <sensor_msgs/NavSatFix.h>
 #include <nodelet/nodelet.h>
 #include <offshore_gnc/GuidanceStatus.h>
 #include <offshore_gnc/SafetyState.h>
@@ -12,6 +13,7 @@
 #include <offshore_gnc/TargetArray.h>
 #include <pluginlib/class_list_macros.hpp>
 
+#include <cmath>
 #include <memory>
 
 #include "offshore_gnc/geo/geo.h"
@@ -51,6 +53,7 @@ class AuvMissionNodelet : public nodelet::Nodelet {
     odom_sub_ = nh.subscribe("odom", 10, &AuvMissionNodelet::onOdom, this);
     safety_sub_ = nh.subscribe("safety/state", 10, &AuvMissionNodelet::onSafety, this);
     usv_sub_ = nh.subscribe("/usv/mission/status", 10, &AuvMissionNodelet::onUsvStatus, this);  // relayed
+    gps_sub_ = nh.subscribe("/auv/gps/fix", 10, &AuvMissionNodelet::onGps, this);  // at the surface (Girona500)
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("auv_mission");
     updater_->add("mission", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
@@ -94,6 +97,13 @@ class AuvMissionNodelet : public nodelet::Nodelet {
     mission_->onUsvStatus(*phase, {m->position.x, m->position.y}, {m->hold_point.x, m->hold_point.y},
                           ros::Time::now().toSec());
     publishOutputs();
+  }
+
+  // Only whether a fix came: the navigation places it (a fix without one is counted there, not trusted here).
+  void onGps(const sensor_msgs::NavSatFix::ConstPtr& f) {
+    if (f->status.status >= sensor_msgs::NavSatStatus::STATUS_FIX && std::isfinite(f->latitude) &&
+        std::isfinite(f->longitude))
+      mission_->onSurfaceFix(f->header.stamp.isZero() ? ros::Time::now().toSec() : f->header.stamp.toSec());
   }
 
   void onSafety(const SafetyState::ConstPtr& s) {
@@ -151,7 +161,7 @@ class AuvMissionNodelet : public nodelet::Nodelet {
   std::unique_ptr<geo::LocalNed> frame_;
   mission::AuvPhase logged_ = mission::AuvPhase::Idle;
   ros::Publisher path_pub_, target_pub_, status_pub_;
-  ros::Subscriber targets_sub_, guidance_sub_, odom_sub_, safety_sub_, usv_sub_;
+  ros::Subscriber targets_sub_, guidance_sub_, odom_sub_, safety_sub_, usv_sub_, gps_sub_;
   ros::Timer timer_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
 };

@@ -128,7 +128,8 @@ const ParamTable<AuvMissionParams>& AuvMissionParams::table() {
       .number("station_radius", &P::station_radius, 0.1, 50.0, "m",
               "on station at its hold point, and stationary at the surface, within this")
       .number("still_window", &P::still_window, 1.0, 600.0, "s",
-              "at the surface also stationary when its position stayed within station_radius of their mean this long");
+              "at the surface also stationary when its position stayed within station_radius of their mean this long, "
+              "on GPS fixes (the latest within it)");
   return t;
 }
 
@@ -238,6 +239,7 @@ void AuvMission::onPose(const Eigen::Vector3d& ned, double yaw, double t) {
   surface_track_.emplace_back(t, ned.head<2>());
   while (surface_track_.size() > 1 && surface_track_[1].first <= t - p_.still_window) surface_track_.pop_front();
   if (t - surface_track_.front().first < p_.still_window) return;  // not watched that long yet
+  if (t - surface_fix_t_ > p_.still_window) return;                 // on the USBL alone: steady says nothing
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const auto& s : surface_track_) mean += s.second;
   mean /= static_cast<double>(surface_track_.size());

@@ -68,9 +68,10 @@ struct AuvMissionParams {
   // 0.32 m/s and 7 m/s of wind: the hull touched it at 323 s). [m]
   double overhead_clearance = 6.0;
   double station_radius = 1.0;       // on station (and, at the surface, stationary) this close to its point [m]
-  // At the surface also stationary when its position stayed within station_radius of their mean this long, wherever
-  // it holds: a Girona500 pushed 1-6 m off its point by wind and current and steady there left the USV waiting at
-  // the run-in to the time limit (evaluation seed 7000, 2026-12-05: 9 of 1000 runs). [s]
+  // At the surface also stationary when its position stayed within station_radius of their mean this long, on GPS
+  // fixes (the latest within it), wherever it holds: a Girona500 pushed 1-6 m off its point by wind and current and
+  // steady there left the USV waiting at the run-in to the time limit (evaluation seed 7000, 2026-12-05: 31 of its
+  // 40 auv_adrift). Not on the USBL alone: an aColor's steady estimate had the hull touch it (seed 9000: 9 runs). [s]
   double still_window = 20.0;
   CoverageArea coverage;             // from the mission config or, in simulation, the scenario
   static const ParamTable<AuvMissionParams>& table();  // without `coverage` (read under its own prefix)
@@ -105,6 +106,8 @@ class AuvMission {
   // The safety supervisor surfaces the vehicle (surface or abort): after the search, the mission ascends too, so
   // that it does not dive back to its hold when the override is released.
   void onSafetySurface(double t);
+  // A GPS fix at the surface came (the Girona500's /auv/gps/fix): its surface position is the GPS's, not the USBL's.
+  void onSurfaceFix(double t) { surface_fix_t_ = t; }
 
   // The path guidance must follow now (the coverage, the hold, the ascent), once per change.
   std::optional<std::vector<Eigen::Vector3d>> takePath();
@@ -123,10 +126,10 @@ class AuvMission {
   const std::optional<Eigen::Vector3d>& pose() const { return pose_; }  // the last navigation estimate
   // TargetFound: when the vehicle first came within station_radius of its hold point (NaN before).
   double onStationSince() const { return on_station_since_; }
-  // At the surface, within station_radius of the point it holds or steady for still_window (what the USV waits for
-  // before closing in and before RECOVERED). Judged on steadiness alone (over 10 s, before the Girona500 had GPS at
-  // the surface), the ROS job's USV closed in on one whose USBL navigation there was steady but off, and touched it
-  // (2026-12-04); a steady AUV off its point is one that cannot stem the wind and current, seen on GPS.
+  // At the surface, within station_radius of the point it holds or, on GPS, steady for still_window (what the USV
+  // waits for before closing in and before RECOVERED). Judged on steadiness alone (over 10 s, before the Girona500
+  // had GPS at the surface), the ROS job's USV closed in on one whose USBL navigation there was steady but off, and
+  // touched it (2026-12-04); a steady AUV off its point on GPS is one that cannot stem the wind and current.
   bool stationary() const;
   double searchEndedAt() const { return searchOver() ? found_t_ : std::numeric_limits<double>::quiet_NaN(); }
   double ascentStart() const { return ascent_t_; }          // NaN before the ascent
@@ -158,6 +161,7 @@ class AuvMission {
   std::string why_ascent_;
   double start_time_ = 0.0, detection_time_, first_tick_ = 0.0, found_t_ = 0.0, usv_t_ = -1e300, yaw_ = 0.0;
   double hold_heading_ = 0.0, on_station_since_, ascent_t_, surfaced_t_, ramp_t_ = 0.0, depth_ref_ = 0.0;
+  double surface_fix_t_ = -1e300;
   bool ticked_ = false, following_ = false, clearing_ = false, mind_usv_ = true, steady_ = false;
   std::deque<std::pair<double, Eigen::Vector2d>> surface_track_;  // at the surface, the last still_window of poses
   Counters counters_;

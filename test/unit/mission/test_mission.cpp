@@ -421,24 +421,34 @@ TEST(AuvMission, ComesUpWhenTheUsvArrivesClearOfItAtTheBoundedRate) {
   EXPECT_TRUE(m.finished());
 }
 
-TEST(AuvMission, AtTheSurfaceSteadyOffItsPointIsStationaryAndADrifterIsNot) {
+TEST(AuvMission, AtTheSurfaceSteadyOffItsPointOnGpsIsStationaryAndADrifterIsNot) {
   // A Girona500 that cannot stem wind and current holds steady a few metres off its point (evaluation seed 7000 run
-  // 86: 2-6 m off for 2300 s, the USV waiting at the run-in): stationary once watched still_window (20 s).
-  AuvMission m(auvParams());
-  holding(m);
-  m.onUsvStatus(UsvPhase::Arrived, {37, 3}, {38, 3}, 100.0);
-  ascend(m, 110.0, 150.0);
-  ASSERT_EQ(m.phase(), AuvPhase::Surfaced);
+  // 86: 2-6 m off for 2300 s, the USV waiting at the run-in): stationary once watched still_window (20 s) on GPS.
+  AuvMission m(auvParams()), usbl_only(auvParams());
+  for (AuvMission* a : {&m, &usbl_only}) {
+    holding(*a);
+    a->onUsvStatus(UsvPhase::Arrived, {37, 3}, {38, 3}, 100.0);
+    ascend(*a, 110.0, 150.0);
+    ASSERT_EQ(a->phase(), AuvPhase::Surfaced);
+  }
   const Eigen::Vector3d off = m.holdPoint() + Eigen::Vector3d(-3.0, 0.0, 0.0);
   double t = 151.0;
+  auto at = [&](double s) {
+    m.onSurfaceFix(s);  // 1 Hz would do; the latest within the window is what counts
+    for (AuvMission* a : {&m, &usbl_only}) a->onPose(off + Eigen::Vector3d(0.4 * std::sin(s), 0.0, 0.0), 0.0, s);
+  };
   for (; t < 170.0; t += 0.5) {
-    m.onPose(off + Eigen::Vector3d(0.4 * std::sin(t), 0.0, 0.0), 0.0, t);  // swinging +-0.4 m
-    EXPECT_FALSE(m.stationary()) << t;                                      // not watched long enough yet
+    at(t);  // swinging +-0.4 m
+    EXPECT_FALSE(m.stationary()) << t;  // not watched long enough yet
   }
-  for (; t < 200.0; t += 0.5) m.onPose(off + Eigen::Vector3d(0.4 * std::sin(t), 0.0, 0.0), 0.0, t);
+  for (; t < 200.0; t += 0.5) at(t);
   EXPECT_TRUE(m.stationary());
+  EXPECT_FALSE(usbl_only.stationary());  // an aColor's steady USBL estimate says nothing of where it is
   // carried off at 0.2 m/s: 4 m within the window
-  for (double s = 0.5; s <= 20.0; s += 0.5) m.onPose(off - Eigen::Vector3d(0.2 * s, 0.0, 0.0), 0.0, t + s);
+  for (double s = 0.5; s <= 20.0; s += 0.5) {
+    m.onSurfaceFix(t + s);
+    m.onPose(off - Eigen::Vector3d(0.2 * s, 0.0, 0.0), 0.0, t + s);
+  }
   EXPECT_FALSE(m.stationary());
 }
 
