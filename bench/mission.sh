@@ -1,8 +1,9 @@
 # The whole co-operative mission ROS-free (mission_rosfree) vs the ROS main job, the same scenario, navigation and seeds
 # Usage: ./scripts/bench mission [--scenario FILE] [--auv-model girona500|acolor] [--runs N] [--ros-rate R]
 # Both navigate the AUV on USBL fixes placed by the USV's relayed GPS and heading; the ROS job runs at --ros-rate
-# (default 20, the main job's: the fastest at which its stacks keep up on a 2-core machine; at --rate 0 the
-# simulators outran them: seed 1's USV cross-track 1.77 m against 0.98 m, 64 USBL outliers against 7) and both
+# (default 20, the main job's: the fastest at which its stacks keep up on a 2-core machine; at --rate 0 each
+# simulator ran its granted half second in a burst and the stacks fell behind within it: seed 1's USV cross-track
+# 1.77 m against 0.98 m, 64 USBL outliers against 7) and both
 # are timed on the simulated run alone (the ROS job from its shared clock's start: masters and stacks' start-up
 # excluded). A run that fails is counted, not fatal. N runs each (ROS-free seeds 1..N; the ROS job's sensor noise comes from its launch
 # files' seeds); medians compared. Last line: one JSON object with each figure of both, their ratio (ROS-free / ROS)

@@ -1,17 +1,18 @@
 // AUV mission: mission::AuvMission fed the sonar targets, guidance's status, the navigation (/auv/odom), the USV
-// mission's status (relayed) and the safety supervisor's decision, on a timer; publishes the path it asks for (the
-// coverage, the hold at the find, the ascent, the hold at the surface), the confirmed and refined target on /target
-// in map_ned with its WGS84 position for the USV (relayed), and its status (relayed to the USV: its position at the
-// surface is where the USV recovers it). Thin: parameters, messages, publishing.
+// mission's status (relayed), the safety supervisor's decision and whether GPS fixes come (/auv/gps/fix), on a
+// timer; publishes the path it asks for (the coverage, the hold at the find, the ascent, the hold at the surface),
+// the confirmed and refined target on /target in map_ned with its WGS84 position for the USV (relayed), and its
+// status (relayed to the USV: its position at the surface is where the USV recovers it). Thin: parameters,
+// messages, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <nav_msgs/Odometry.h>
-#include <sensor_msgs/NavSatFix.h>
 #include <nodelet/nodelet.h>
 #include <offshore_gnc/GuidanceStatus.h>
 #include <offshore_gnc/SafetyState.h>
 #include <offshore_gnc/Target.h>
 #include <offshore_gnc/TargetArray.h>
 #include <pluginlib/class_list_macros.hpp>
+#include <sensor_msgs/NavSatFix.h>
 
 #include <cmath>
 #include <memory>
@@ -99,7 +100,7 @@ class AuvMissionNodelet : public nodelet::Nodelet {
     publishOutputs();
   }
 
-  // Only whether a fix came: the navigation places it (a fix without one is counted there, not trusted here).
+  // Only that a fix came: the navigation places and fuses it (and counts the ones it refuses).
   void onGps(const sensor_msgs::NavSatFix::ConstPtr& f) {
     if (f->status.status >= sensor_msgs::NavSatStatus::STATUS_FIX && std::isfinite(f->latitude) &&
         std::isfinite(f->longitude))
