@@ -720,8 +720,8 @@ void UsvMission::planRecovery(double t) {
   // run-in moved with it (a Girona500 that could not hold against 0.5 m/s drifted onto the USV holding downstream of
   // it and touched the hull; an aColor swinging +-3 m about its point came within 0.3 m of it).
   // The straight close-in from where it is swings the whole hull round on dynamic positioning: only when that
-  // sweep (the hull's longest reach either side of the line) is clear of what guidance plans round (evaluation
-  // seed 7000 run 962: 7 m from the point and downstream of it, but across a buoy; the run-in's axis was clear).
+  // sweep (the hull's longest reach either side of the line) is clear of what guidance plans round. A guard, not a
+  // fix seen to act: seed 7000's recovery collisions replayed the same with it and without it.
   const Eigen::Vector2d from_point = u - recovery_point_;
   const double sweep = std::max({hull_.ahead, hull_.astern, hull_.abeam});
   alongside_ = auvHeld(t) && (alongside_ || (from_point.dot(up) <= 0.0 && from_point.norm() <= p_.waypoint_spacing &&

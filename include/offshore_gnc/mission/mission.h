@@ -71,7 +71,7 @@ struct AuvMissionParams {
   // At the surface also stationary when its position stayed within station_radius of their mean this long, on GPS
   // fixes (the latest within it), wherever it holds: a Girona500 pushed 1-6 m off its point by wind and current and
   // steady there left the USV waiting at the run-in to the time limit (evaluation seed 7000, 2026-12-05: 31 of its
-  // 40 auv_adrift). Not on the USBL alone: an aColor's steady estimate had the hull touch it (seed 9000: 9 runs). [s]
+  // 40 auv_adrift). Not on the USBL alone: an aColor's USBL estimate can be steady but off (2026-12-04). [s]
   double still_window = 20.0;
   CoverageArea coverage;             // from the mission config or, in simulation, the scenario
   static const ParamTable<AuvMissionParams>& table();  // without `coverage` (read under its own prefix)
