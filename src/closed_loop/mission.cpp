@@ -253,6 +253,11 @@ MissionResult runMission(const MissionConfig& cfg) {
     const auto usv_phase = usv.mission().phase();
     const guidance::GuidanceOutput* usv_g = usv_alive ? usv.guidanceStep() : nullptr;
     record(res.usv, usv.truth(), step, usv_g, usv.guidance(), usv_phase == mission::UsvPhase::Transit);
+    if (usv_g && usv_g->planned_changed) {
+      MissionResult::Plan plan{t, usv.guidance().plan().status, {}, usv.guidance().plannedRound()};
+      for (const auto& w : usv.guidance().plannedPath()) plan.path.push_back(w.head<2>());
+      res.usv_plans.push_back(std::move(plan));
+    }
     if (usv_g && usv_phase == mission::UsvPhase::Recovery && usv_g->los.mode == guidance::Mode::kFollowPath)
       recovery_xte.emplace_back(t, trueCrossTrack(*usv_g, usv.truth()));
     const VehicleState& ax = auv.truth();

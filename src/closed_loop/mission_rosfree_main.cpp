@@ -2,7 +2,8 @@
 // scenario, configuration files and seeds as ./scripts/mission. Prints one JSON object with the figures the
 // mission report gives (metrics.json's keys; `outcome` one of closed_loop/outcome.h's, `reason` the sentence);
 // --out DIR also writes the tracks as CSV, and each vehicle's trace for tuning (usv_trace.csv: truth, guidance's
-// reference, the joystick command; auv_trace.csv: truth, the navigation estimate, the reference, the wrench).
+// reference, the joystick command; auv_trace.csv: truth, the navigation estimate, the reference, the wrench;
+// usv_plans.csv: each path the USV's guidance planned, with what it planned round).
 // --fault PLAN injects the faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault: the simulators', and link
 // and geofence between the vehicles); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
 // --seed S draws every sensor's noise anew (the USV simulator seed 2S-1, the AUV's 2S: S = 1 is the launch files'
@@ -88,6 +89,20 @@ void writeTrace(const std::string& path, const char* header, const std::vector<s
   for (const auto& row : rows)
     for (std::size_t i = 0; i < N; ++i) f << row[i] << (i + 1 < N ? "," : "\n");
 }
+// One row a plan: t, status, its waypoints "n e;n e;...", what it was planned round "id n e extent;..."
+void writePlans(const std::string& path, const std::vector<closed_loop::MissionResult::Plan>& plans) {
+  std::ofstream f(path);
+  f << "t,status,path,round\n";
+  for (const auto& p : plans) {
+    f << p.t << ",\"" << p.status << "\",";
+    for (std::size_t i = 0; i < p.path.size(); ++i) f << (i ? ";" : "") << p.path[i].x() << " " << p.path[i].y();
+    f << ",";
+    for (std::size_t i = 0; i < p.round.size(); ++i)
+      f << (i ? ";" : "") << p.round[i].id << " " << p.round[i].origin.x() << " " << p.round[i].origin.y() << " "
+        << std::max(p.round[i].length, p.round[i].width);
+    f << "\n";
+  }
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -153,6 +168,7 @@ int main(int argc, char** argv) {
       writeCsv(out + "/auv_truth.csv", "t,north,east,down", r.auv.truth);
       writeTrace(out + "/usv_trace.csv", closed_loop::kUsvTraceHeader, r.usv_trace);
       writeTrace(out + "/auv_trace.csv", closed_loop::kAuvTraceHeader, r.auv_trace);
+      writePlans(out + "/usv_plans.csv", r.usv_plans);
     }
     std::printf(
         "{\"success\": %s, \"outcome\": %s, \"reason\": %s, \"usv_xte_est_rmse_m\": %s, \"usv_xte_est_sd_m\": %s, "

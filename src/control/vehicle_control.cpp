@@ -38,7 +38,10 @@ const ParamTable<UsvControlParams>& UsvControlParams::table() {
       .flag("turn_first", &P::turn_first,
             "path following: the surge reference scaled by cos^2 of the heading error (turn first, then drive)")
       .number("turn_thrust", &P::turn_thrust, 0.0, 1.0, "",
-              "least joystick surge while following a path with the bow > 30 deg off (the jets steer with thrust)");
+              "least joystick surge while following a path with the bow > 30 deg off (the jets steer with thrust)")
+      .number("turn_hold_angle", &P::turn_hold_angle, 0.0, kPi, "rad",
+              "from near rest a bow this far off the path's heading turns held on station (0: off)")
+      .number("turn_hold_speed", &P::turn_hold_speed, 0.0, 5.0, "m/s", "near rest: surge below this");
   return t;
 }
 
@@ -106,14 +109,25 @@ JoystickOut UsvController::update(const VehicleState& s, const MotionReference& 
   }
   double u_ref = r.surge;
   double heading = r.heading;
-  if (r.mode == ReferenceMode::kHold) {
+  // The turn onto a path held on station (turn_hold_angle): the station's force, the path's heading.
+  const double off = std::abs(angleDiff(heading, yaw_f_));
+  if (r.mode != ReferenceMode::kFollow || p_.turn_hold_angle <= 0.0) {
+    turning_ = false;
+  } else if (!turning_ && off > p_.turn_hold_angle && u_f < p_.turn_hold_speed) {
+    turning_ = true;
+    turn_point_ = s.position.head<2>();
+    counters_.increment("turns_held");
+  } else if (turning_ && off < 0.25 * p_.turn_hold_angle) {
+    turning_ = false;
+  }
+  if (r.mode == ReferenceMode::kHold || turning_) {
     if (!was_holding) dp_->resume();
     holding_ = true;
-    dp_out_ = dp_->update(s, r.point.head<2>(), r.heading);
+    dp_out_ = dp_->update(s, turning_ ? turn_point_ : r.point.head<2>(), r.heading);
     out.surge = jets_.surgeFor(dp_out_.body_force.x());
     out.sway = clamp1(dp_out_.body_force.y() / jets_.sideForceFull());
     surge_.reset();
-    out.yaw = clamp1(yaw_.update(angleDiff(dp_out_.heading, yaw_f_), -r_f, p_.dt));
+    out.yaw = clamp1(yaw_.update(angleDiff(turning_ ? heading : dp_out_.heading, yaw_f_), -r_f, p_.dt));
     keepYawAuthority(out);
     return out;
   }

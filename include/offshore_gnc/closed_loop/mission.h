@@ -124,6 +124,15 @@ struct MissionResult {
   // The AUV at 20 Hz (auv_trace.csv, kAuvTraceHeader): truth, its navigation estimate, the reference control
   // follows, the Girona500's requested wrench (NaN on the aColor).
   std::vector<std::array<double, 17>> auv_trace;
+  // Each path the USV's guidance planned (usv_plans.csv): when, its status (a detour, blocked, ...), its waypoints
+  // and what it was planned round (each obstacle's position and extent), to see why the boat went where it went.
+  struct Plan {
+    double t = 0.0;
+    std::string status;
+    std::vector<Eigen::Vector2d> path;
+    std::vector<guidance::SbbObstacle> round;
+  };
+  std::vector<Plan> usv_plans;
 };
 inline constexpr const char* kUsvTraceHeader =
     "t,north,east,yaw,u,v,r,ref_mode,ref_north,ref_east,ref_heading,xte,surge,sway,yaw_cmd,"

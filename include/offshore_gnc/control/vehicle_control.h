@@ -40,6 +40,12 @@ struct UsvControlParams {
   // turn_first false and turn_thrust 0.3, the least joystick surge while the bow is more than 30 deg off.
   bool turn_first = true;
   double turn_thrust = 0.0;
+  // Turning onto a path from near rest (slower than turn_hold_speed) with the bow more than turn_hold_angle off:
+  // dynamic positioning holds the boat where the turn began until the bow is within a quarter of that angle, then
+  // it drives. Turning unheld, the field day's wind and current set the boat 2 m off the path's start before it
+  // had way on (the transit's largest cross-track). 0: off.
+  double turn_hold_angle = 0.0;  // [rad]
+  double turn_hold_speed = 0.3;  // [m/s]
   double dt = 0.1;                                       // control period [s] (from the control rate)
   static const ParamTable<UsvControlParams>& table();
   void validate() const;
@@ -66,6 +72,8 @@ class UsvController {
   void keepYawAuthority(JoystickOut& out) const;  // station keeping: the heading first when the jets saturate
   DpOutput dp_out_;
   bool holding_ = false;  // the last step was station keeping
+  bool turning_ = false;  // holding where a turn onto the path began (turn_hold_angle)
+  Eigen::Vector2d turn_point_ = Eigen::Vector2d::Zero();
   double yaw_unwrapped_ = 0.0, yaw_prev_ = 0.0, yaw_f_ = 0.0, u_f_prev_ = 0.0;
   bool primed_ = false;
   Counters counters_;

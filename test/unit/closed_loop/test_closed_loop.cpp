@@ -94,3 +94,25 @@ TEST(ClosedLoop, Girona500CrabsAcrossAStrongCurrent) {
   RecordProperty("rmse_fixed_heading_m", std::to_string(fixed.metrics.rmse));
   EXPECT_GT(fixed.metrics.rmse, 2.0 * crab.metrics.rmse) << "without the crab: RMSE " << fixed.metrics.rmse;
 }
+
+TEST(ClosedLoop, UsvTurnsOntoAPathFromRestHeldOnStation) {
+  // At rest with the bow the wrong way (south, the path north) in a 0.2 m/s cross current: turning unheld, the
+  // current sets the boat off the path's start before it has way on; held (turn_hold_angle), it turns where it is.
+  auto cfg = scenarios::usvStraight(true);
+  cfg.start_yaw = kPi;
+  cfg.max_time = 120.0;
+  auto offTheStart = [](const ClosedLoopResult& r) {  // the largest set across the path while near its start
+    double e = 0.0;
+    for (const auto& x : r.track)
+      if (x.x() < 10.0) e = std::max(e, std::abs(x.y()));
+    return e;
+  };
+  const double held = offTheStart(runUsv(cfg));
+  auto unheld_cfg = cfg;
+  unheld_cfg.usv = [](UsvStackConfig& u) { u.control.usv.turn_hold_angle = 0.0; };
+  const double unheld = offTheStart(runUsv(unheld_cfg));
+  // 1.77 m held, 2.35 m unheld (2026-12-05): the turn itself keeps the jets' yaw at full deflection, which the
+  // allocation serves first, so the hold has little authority until the bow is round; capping the turn's yaw to
+  // leave it more (a fifth of full) held within 1 m here but took 100 s to turn the mission's boat in the wind.
+  EXPECT_LT(held, 0.85 * unheld) << "held " << held << " m, unheld " << unheld << " m";
+}
