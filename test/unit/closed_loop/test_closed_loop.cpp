@@ -101,6 +101,7 @@ TEST(ClosedLoop, UsvTurnsOntoAPathFromRestHeldOnStation) {
   auto cfg = scenarios::usvStraight(true);
   cfg.start_yaw = kPi;
   cfg.max_time = 120.0;
+  cfg.usv = [](UsvStackConfig& u) { u.control.usv.turn_hold_angle = 1.0; };  // off in the shipped configuration
   auto offTheStart = [](const ClosedLoopResult& r) {  // the largest set across the path while near its start
     double e = 0.0;
     for (const auto& x : r.track)
