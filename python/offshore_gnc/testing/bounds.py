@@ -10,6 +10,7 @@ test/bounds.yaml's header. Python 3 standard library and PyYAML only.
 """
 import argparse
 import datetime
+import functools
 import glob
 import json
 import os
@@ -28,7 +29,9 @@ SPREADS = 3.0
 FLOOR = 0.1  # ... or a tenth of the mean, for a figure whose runs hardly differ (a rostest's timing does)
 
 
+@functools.lru_cache(maxsize=None)
 def load(path=BOUNDS):
+    """test/bounds.yaml's cases, read once per process (each bound a test reads comes from here)."""
     with open(path) as f:
         return yaml.safe_load(f)["cases"]
 
