@@ -359,6 +359,7 @@ MissionResult runMission(const MissionConfig& cfg) {
   res.auv_nav_max_m = nav_error.empty() ? kNaN : *std::max_element(nav_error.begin(), nav_error.end());
   if (const UsblNavigation* u = auv.usblNavigation()) {
     res.usbl = scoreFixes(u->fixes(), res.auv.truth);
+    res.usbl_fixes = u->fixes();
     res.usbl.multipath_replies = u->beaconCounters().get("multipath");
   }
   res.relay_lost = to_auv.lost() + to_usv.lost() + usv_status.lost() + auv_status.lost();

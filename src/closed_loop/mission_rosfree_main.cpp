@@ -3,7 +3,8 @@
 // mission report gives (metrics.json's keys; `outcome` one of closed_loop/outcome.h's, `reason` the sentence);
 // --out DIR also writes the tracks as CSV, and each vehicle's trace for tuning (usv_trace.csv: truth, guidance's
 // reference, the joystick command; auv_trace.csv: truth, the navigation estimate, the reference, the wrench;
-// usv_plans.csv: each path the USV's guidance planned, with what it planned round).
+// usv_plans.csv: each path the USV's guidance planned, with what it planned round; usbl_fixes.csv: each USBL fix,
+// its verdict and where it put the AUV).
 // --fault PLAN injects the faults (offshore_gnc::FaultPlan, as ./scripts/mission --fault: the simulators', and link
 // and geofence between the vehicles); each vehicle's supervisor's activations are listed (usv_safety, auv_safety).
 // --seed S draws every sensor's noise anew (the USV simulator seed 2S-1, the AUV's 2S: S = 1 is the launch files'
@@ -27,6 +28,7 @@
 #include "offshore_gnc/closed_loop/mission.h"
 #include "offshore_gnc/common/faults.h"
 #include "offshore_gnc/common/validate.h"
+#include "offshore_gnc/usbl/positioning.h"
 
 using namespace offshore_gnc;
 
@@ -103,6 +105,15 @@ void writePlans(const std::string& path, const std::vector<closed_loop::MissionR
     f << "\n";
   }
 }
+// Each USBL fix: when the beacon was there, the gates' verdict (a quality name, or fused / gated by the filter),
+// where it placed the AUV (auv_truth.csv has where it was).
+void writeFixes(const std::string& path, const std::vector<closed_loop::UsblFixRecord>& fixes) {
+  std::ofstream f(path);
+  f << "t,verdict,north,east,down\n";
+  for (const auto& x : fixes)
+    f << x.t << "," << (x.quality != usbl::Q_OK ? usbl::qualityName(x.quality) : (x.fused ? "fused" : "gated")) << ","
+      << x.ned.x() << "," << x.ned.y() << "," << x.ned.z() << "\n";
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -169,6 +180,7 @@ int main(int argc, char** argv) {
       writeTrace(out + "/usv_trace.csv", closed_loop::kUsvTraceHeader, r.usv_trace);
       writeTrace(out + "/auv_trace.csv", closed_loop::kAuvTraceHeader, r.auv_trace);
       writePlans(out + "/usv_plans.csv", r.usv_plans);
+      writeFixes(out + "/usbl_fixes.csv", r.usbl_fixes);
     }
     std::printf(
         "{\"success\": %s, \"outcome\": %s, \"reason\": %s, \"usv_xte_est_rmse_m\": %s, \"usv_xte_est_sd_m\": %s, "

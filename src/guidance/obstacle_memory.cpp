@@ -17,6 +17,8 @@ const ParamTable<ObstacleMemoryParams>& ObstacleMemoryParams::table() {
                "an obstacle is kept out of view only when seen in this many frames")
       .number("match_gap", &P::match_gap, 0.0, 100.0, "m",
               "a target this close to a kept obstacle's extent is that obstacle seen again")
+      .number("extent_hold", &P::extent_hold, 0.0, 3600.0, "s",
+              "an obstacle seen again keeps the largest extent it had over this long (0: each frame's own)")
       .number("sensor_ahead", &P::sensor_ahead, -100.0, 100.0, "m",
               "the obstacle sensor (LiDAR) ahead of the reference point")
       .degrees("sensor_aperture_deg", &P::sensor_aperture, 0.0, 360.0,
@@ -49,15 +51,19 @@ void ObstacleMemory::update(const std::vector<SbbObstacle>& seen, const Eigen::V
   auto reach = [](const SbbObstacle& o) { return 0.5 * std::max(o.length, o.width); };
   std::vector<Kept> next;
   next.reserve(seen.size() + kept_.size());
-  for (const auto& s : seen) next.push_back({s, t, 1});
+  for (const auto& s : seen) next.push_back({s, t, 1, 2.0 * reach(s), t});
   remembered_ = 0;
   for (auto& k : kept_) {
     // seen again: the frame's targets stand for it, and inherit its count (a cluster that splits or merges
-    // keeps its history)
+    // keeps its history) and the largest extent it had within extent_hold (matched on the frame's own extent)
     bool again = false;
     for (std::size_t i = 0; i < seen.size(); ++i)
       if ((seen[i].origin - k.o.origin).norm() <= reach(seen[i]) + reach(k.o) + p_.match_gap) {
         next[i].frames = std::max(next[i].frames, k.frames + 1);
+        if (k.extent > next[i].extent && t - k.extent_t <= p_.extent_hold) {
+          next[i].extent = k.extent;
+          next[i].extent_t = k.extent_t;
+        }
         again = true;
       }
     if (again) continue;
@@ -73,7 +79,11 @@ void ObstacleMemory::update(const std::vector<SbbObstacle>& seen, const Eigen::V
 std::vector<SbbObstacle> ObstacleMemory::active(double t) const {
   std::vector<SbbObstacle> out;
   if (t - frame_t_ > p_.timeout) return out;
-  for (const auto& k : kept_) out.push_back(k.o);
+  for (const auto& k : kept_) {
+    SbbObstacle o = k.o;
+    if (k.extent > std::max(o.length, o.width)) o.length = o.width = k.extent;
+    out.push_back(o);
+  }
   return out;
 }
 

@@ -203,7 +203,9 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
 }
 
 void GuidancePipeline::keepHoldClear(double t, GuidanceOutput& out) {
-  const std::vector<SbbObstacle> obstacles = this->obstacles(t);
+  std::vector<SbbObstacle> obstacles = this->obstacles(t);
+  obstacles.erase(std::remove_if(obstacles.begin(), obstacles.end(), [](const SbbObstacle& o) { return !o.boxed; }),
+                  obstacles.end());
   if (obstacles.empty()) return;
   const Eigen::Vector2d asked = out.reference.point.head<2>();
   // Another hold point: choose afresh. One a little off the last (a recovery's point follows the AUV's reported

@@ -18,6 +18,7 @@ inline std::vector<guidance::SbbObstacle> obstaclesOf(const TargetArray& m) {
     o.origin = Eigen::Vector2d(t.origin.x, t.origin.y);
     o.length = t.length;
     o.width = t.width;
+    o.boxed = !t.unboxed;
     obstacles.push_back(o);
   }
   return obstacles;
@@ -37,6 +38,7 @@ inline TargetArray targetsOf(const std::vector<guidance::SbbObstacle>& obstacles
     t.origin.y = t.centroid.y = t.nearest.y = o.origin.y();
     t.length = o.length;
     t.width = o.width;
+    t.unboxed = !o.boxed;
     a.targets.push_back(t);
   }
   return a;

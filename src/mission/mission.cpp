@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/geometry.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/guidance/paths.h"
 
@@ -24,14 +25,6 @@ std::vector<Eigen::Vector3d> holdPath3(const Eigen::Vector3d& p, double heading)
   std::vector<Eigen::Vector3d> out;
   for (const auto& w : holdPath(p.head<2>(), heading)) out.emplace_back(w.x(), w.y(), p.z());
   return out;
-}
-
-// Distance of p from the segment a-b.
-double segmentDistance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
-  const Eigen::Vector2d ab = b - a;
-  const double l2 = ab.squaredNorm();
-  const double k = l2 > 0.0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-  return (a + k * ab - p).norm();
 }
 
 template <class Phase, std::size_t N>
@@ -521,11 +514,12 @@ std::optional<std::vector<Eigen::Vector2d>> UsvMission::takePath() {
 }
 
 std::vector<guidance::SbbObstacle> UsvMission::keepClear() const {
-  if (phase_ != UsvPhase::Recovery || alongside_ || !round_auv_ || !auv_planned_.allFinite()) return {};
+  if (phase_ != UsvPhase::Recovery || alongside_ || !auv_planned_.allFinite()) return {};
   guidance::SbbObstacle o;
   o.id = kAuvObstacleId;
   o.origin = auv_planned_;
   o.length = o.width = p_.auv_extent;
+  o.boxed = round_auv_;  // otherwise only a detour round something else keeps off it
   return {o};
 }
 

@@ -7,18 +7,12 @@
 #include <limits>
 
 #include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/geometry.h"
 #include "offshore_gnc/common/validate.h"
 
 namespace offshore_gnc {
 namespace safety {
 namespace {
-
-double segmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double l2 = ab.squaredNorm();
-  const double s = l2 > 0.0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-  return (p - (a + s * ab)).norm();
-}
 
 double orient(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
@@ -66,7 +60,7 @@ bool Region::contains(double x, double y) const {
 double Region::distanceToEdge(double x, double y) const {
   const Eigen::Vector2d p(x, y);
   double d = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < v_.size(); ++i) d = std::min(d, segmentDistance(p, v_[i], v_[(i + 1) % v_.size()]));
+  for (std::size_t i = 0; i < v_.size(); ++i) d = std::min(d, segmentDistance(v_[i], v_[(i + 1) % v_.size()], p));
   return d;
 }
 

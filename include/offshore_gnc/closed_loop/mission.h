@@ -133,6 +133,8 @@ struct MissionResult {
     std::vector<guidance::SbbObstacle> round;
   };
   std::vector<Plan> usv_plans;
+  // Each USBL fix and its verdict (usbl_fixes.csv), beside the AUV's true position at its time.
+  std::vector<UsblFixRecord> usbl_fixes;
 };
 inline constexpr const char* kUsvTraceHeader =
     "t,north,east,yaw,u,v,r,ref_mode,ref_north,ref_east,ref_heading,xte,surge,sway,yaw_cmd,"

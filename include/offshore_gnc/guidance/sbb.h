@@ -21,6 +21,9 @@ struct SbbObstacle {
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // eq. 4.3 origin (N_o, E_o)
   double length = 0.0;                               // obstacle extents [m]
   double width = 0.0;
+  // false: no safety box of its own, no hold clearance; a detour only takes the side that does not pass it (the
+  // surfaced AUV beside a recovery's way: boxed, its 13 m box merged with buoys' into one 20 m detour round them all)
+  bool boxed = true;
 };
 
 struct SbbParams {
@@ -32,6 +35,9 @@ struct SbbParams {
   double approach = 0.0;      // original waypoints closer than this to a detour corner are dropped, so a vehicle
                               // with a large turning circle gets a gentle run-in and run-out (0 = thesis) [m]
   double hold_clearance = 3.0; // a hold point keeps this clear of an obstacle's extent (0: no check) [m]
+  double keep_side = 6.0;     // a side chosen before is kept while the other is not this much nearer: a kept
+                              // side round a box that then merged with a vessel's led 25 m round it, past the
+                              // vessel, with the other side 9 m nearer (tuning seed 31 run 286) [m]
   static const ParamTable<SbbParams>& table();
   void validate() const;
 };
@@ -63,9 +69,11 @@ struct SbbPlan {
 // is unknown (LiDAR extents), so the larger extent is used on both axes.
 SbbBox makeBox(const SbbObstacle& o, double path_angle, const SbbParams& p);
 
-// Plans around `obstacles` along `path`; `vehicle` (NED) decides the closer side (eq. 4.7). When replanning,
-// `previous` (the last plan's boxes) keeps the side already chosen for an obstacle while it is still safe: a boat
-// near the obstacle's centre line, drifting in the current, otherwise flips its detour from side to side.
+// Plans around `obstacles` along `path`; `vehicle` (NED) decides the closer side (eq. 4.7), unless that side's
+// detour runs abeam through an obstacle or passes an unboxed one within the safety distance across, and the other
+// does not. When replanning, `previous` (the last plan's boxes) keeps the side already chosen for an obstacle while
+// it is still safe: a boat near the obstacle's centre line, drifting in the current, otherwise flips its detour
+// from side to side.
 SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d& vehicle,
                 const std::vector<SbbObstacle>& obstacles, const SbbParams& p,
                 const std::vector<SbbBox>& previous = {});

@@ -236,10 +236,10 @@ class UsvMission {
   void tick(double t);                     // time-based checks (peer timeout, manual released)
   std::optional<std::vector<Eigen::Vector2d>> takePath();
   // What guidance must plan round besides what its LiDAR sees (GuidancePipeline::setKnownObstacles), current with
-  // each path takePath() gives: on the way to the recovery's run-in, when it passes the AUV closer than the recovery
-  // point, the surfaced AUV (kAuvObstacleId, auv_extent about its reported position; the simulated LiDAR has no AUV,
-  // a real one sees a low hull poorly); nothing once closing in along the axis (the bow's recovery_distance is the
-  // approach's own) or in any other phase.
+  // each path takePath() gives: on the way to the recovery's run-in, the surfaced AUV (kAuvObstacleId, auv_extent
+  // about its reported position; the simulated LiDAR has no AUV, a real one sees a low hull poorly), boxed when the
+  // way passes it closer than the recovery point, else only a side a detour must not take; nothing once closing in
+  // along the axis (the bow's recovery_distance is the approach's own) or in any other phase.
   std::vector<guidance::SbbObstacle> keepClear() const;
   double distanceToGo() const;             // along the transit path; NaN outside the transit
   // Arrived, when the USV first came within station_radius of the point guidance holds (NaN before): the hold at the
@@ -294,7 +294,7 @@ class UsvMission {
   guidance::HullReach hull_;
   bool auv_stationary_ = false, alongside_ = false;  // alongside: closing in from the run-in point
   Eigen::Vector2d run_in_ = kNoPoint;
-  bool round_auv_ = false;  // the way to the run-in passes the AUV: guidance plans round it (keepClear)
+  bool round_auv_ = false;  // the way to the run-in passes the AUV: guidance boxes it (keepClear)
   Eigen::Vector2d vane_ = kNoPoint;  // the bow's mean direction while holding: where the current comes from
   double pose_t_ = 0.0;
   double auv_t_ = -1e300, settled_since_, recovered_t_, auv_still_since_;

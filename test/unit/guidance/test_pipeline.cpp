@@ -231,6 +231,12 @@ TEST(GuidancePipeline, AHoldPointTooCloseToAnObstacleIsRefusedAndAClearOneHeld) 
   g.setObstacles({}, 1.0);
   ASSERT_TRUE(g.update(1.0, 0.1, out));
   EXPECT_NEAR((out.reference.point.head<2>() - Eigen::Vector2d(-10, 0)).norm(), 0.0, 1e-9);
+  // a known obstacle given unboxed (the mission's surfaced AUV its recovery holds bow-on to) moves no hold point
+  SbbObstacle auv = buoy(-9, 0);
+  auv.boxed = false;
+  g.setKnownObstacles({auv});
+  ASSERT_TRUE(g.update(1.1, 0.1, out));
+  EXPECT_NEAR((out.reference.point.head<2>() - Eigen::Vector2d(-10, 0)).norm(), 0.0, 1e-9);
 }
 
 TEST(GuidancePipeline, PresetsAreTheThesisTables) {
@@ -294,6 +300,35 @@ TEST(ObstacleMemory, KeepsWhatTheSensorCannotSeeAndDropsWhatItLooksAtAndMisses) 
   EXPECT_EQ(m.active(501.0).size(), 1u);
   // no frame for obstacle_timeout (the sensor is gone): nothing is planned round
   EXPECT_TRUE(m.active(501.0 + p.timeout + 0.1).empty());
+}
+
+// A vessel's cluster shrinks to the edge the LiDAR sees for a few frames: it keeps its largest extent for
+// extent_hold, then takes what it is seen as.
+TEST(ObstacleMemory, ATargetKeepsItsLargestRecentExtent) {
+  ObstacleMemoryParams p;
+  ObstacleMemory m(p);
+  const Eigen::Vector2d here(0, 0);
+  SbbObstacle vessel = buoy(20, 0);
+  vessel.length = 4.0;
+  vessel.width = 3.0;
+  m.update({vessel}, here, 0.0, 0.0);
+  SbbObstacle edge = buoy(20.5, 0.5);
+  edge.length = edge.width = 0.1;
+  m.update({edge}, here, 0.0, 0.1);
+  ASSERT_EQ(m.active(0.1).size(), 1u);
+  EXPECT_DOUBLE_EQ(m.active(0.1)[0].length, 4.0);
+  EXPECT_DOUBLE_EQ(m.active(0.1)[0].width, 4.0);
+  EXPECT_LT((m.active(0.1)[0].origin - edge.origin).norm(), 1e-12);  // where it is seen now
+  for (double t = 0.2; t < p.extent_hold; t += 0.1) m.update({edge}, here, 0.0, t);
+  EXPECT_DOUBLE_EQ(m.active(p.extent_hold - 0.05)[0].length, 4.0);
+  m.update({edge}, here, 0.0, p.extent_hold + 0.1);
+  EXPECT_DOUBLE_EQ(m.active(p.extent_hold + 0.1)[0].length, 0.1);
+  // 0: each frame's own
+  p.extent_hold = 0.0;
+  ObstacleMemory own(p);
+  own.update({vessel}, here, 0.0, 0.0);
+  own.update({edge}, here, 0.0, 0.1);
+  EXPECT_DOUBLE_EQ(own.active(0.1)[0].length, 0.1);
 }
 
 // In the pipeline: the hold point stays clear of a buoy the boat has come alongside and no longer sees.

@@ -30,6 +30,7 @@ SbbParams params() {
   p.max_offset = 30.0;
   return p;
 }
+constexpr std::uint32_t kUnboxedId = 99;
 bool insideAny(const V2& w, const std::vector<SbbBox>& boxes) {
   for (const auto& b : boxes)
     if (b.contains(w, 1e-6)) return true;
@@ -101,6 +102,14 @@ TEST(Sbb, ReplanKeepsTheChosenSideWhileTheVehicleDrifts) {
   narrow.max_offset = 5.0;
   EXPECT_EQ(planSbb(path, V2(0.0, 1.2), {buoy(3, 50.0, -3.0)}, narrow, first.boxes).boxes[0].side,
             SbbSide::kStarboard);
+  // ...and one that became far the longer way round (the box merged with another to port: port 15.2 m off,
+  // starboard 5.3) gives way to the nearer, more than keep_side nearer
+  const SbbPlan merged = planSbb(path, V2(0.0, 1.2), {o, buoy(4, 50.0, -8.0)}, p, first.boxes);
+  ASSERT_FALSE(merged.boxes.empty());
+  EXPECT_EQ(merged.boxes[0].side, SbbSide::kStarboard);
+  SbbParams sticky = p;
+  sticky.keep_side = 20.0;
+  EXPECT_EQ(planSbb(path, V2(0.0, 1.2), {o, buoy(4, 50.0, -8.0)}, sticky, first.boxes).boxes[0].side, SbbSide::kPort);
 }
 
 TEST(Sbb, ObstacleOffThePathIsIgnored) {
@@ -214,6 +223,36 @@ TEST(Sbb, OneSideForAMergedBoxAcrossSeveralLegs) {
     least = std::min(least, (a + k * (b - a) - auv.origin).norm());
   }
   EXPECT_GT(least, 0.75 + p.corridor);
+}
+
+// A buoy's box reaching forward past the leg's start from behind the vehicle (its nearer side port), and beside the
+// way to port a surfaced AUV the mission hands over unboxed: the detour takes starboard, keeps the safety distance
+// across from the AUV, and the AUV gets no box of its own (evaluation seed 11000 run 116: a corner 2.7 m from it).
+TEST(Sbb, ADetourKeepsOffTheSideOfAnUnboxedObstacle) {
+  const SbbParams p = params();
+  const std::vector<V3> path{V3(0, 0, 0), V3(40, 0, 0)};
+  const SbbObstacle behind = buoy(1, -4, 1);
+  const SbbPlan alone = planSbb(path, V2(0, 0), {behind}, p);
+  ASSERT_EQ(alone.boxes.size(), 1u);
+  EXPECT_EQ(alone.boxes[0].side, SbbSide::kPort);  // the nearer side, without the AUV
+  SbbObstacle auv = buoy(kUnboxedId, 1, -8, 1.5);
+  auv.boxed = false;
+  const SbbPlan plan = planSbb(path, V2(0, 0), {behind, auv}, p);
+  ASSERT_EQ(plan.boxes.size(), 1u);
+  EXPECT_EQ(plan.boxes[0].side, SbbSide::kStarboard);
+  for (const auto& b : plan.boxes) EXPECT_TRUE(std::find(b.ids.begin(), b.ids.end(), kUnboxedId) == b.ids.end());
+  double least = 1e9;
+  for (std::size_t i = 1; i < plan.path.size(); ++i) {
+    const V2 a = plan.path[i - 1].head<2>(), b = plan.path[i].head<2>();
+    if ((b - a).norm() < 1e-9) continue;
+    const double k = std::clamp((auv.origin - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    least = std::min(least, (a + k * (b - a) - auv.origin).norm());
+  }
+  EXPECT_GT(least, 0.75 + p.safety_y);
+  // alone, an unboxed obstacle changes nothing: it is no box to plan round
+  const SbbPlan on_line = planSbb(path, V2(0, 0), {auv}, p);
+  EXPECT_FALSE(on_line.modified);
+  EXPECT_TRUE(on_line.boxes.empty());
 }
 
 TEST(Sbb, NonFiniteObstaclesIgnored) {

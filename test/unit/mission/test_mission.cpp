@@ -697,7 +697,7 @@ TEST(UsvMission, KeepsItsDistanceFromAnAuvThatMoves) {
   EXPECT_FALSE(m.takePath());
 }
 
-TEST(UsvMission, AsksGuidanceToRoundTheAuvWhenTheWayToTheRunInPassesClose) {
+TEST(UsvMission, TellsGuidanceOfTheAuvOnTheWayToTheRunInBoxedWhenTheWayPassesClose) {
   UsvMission m;
   arrived(m);
   EXPECT_TRUE(m.keepClear().empty());  // nothing besides the LiDAR's before the recovery
@@ -713,11 +713,17 @@ TEST(UsvMission, AsksGuidanceToRoundTheAuvWhenTheWayToTheRunInPassesClose) {
   EXPECT_EQ(keep[0].id, kAuvObstacleId);
   EXPECT_LT((keep[0].origin - Eigen::Vector2d(50, 0)).norm(), 1e-9);
   EXPECT_DOUBLE_EQ(keep[0].length, UsvMissionParams().auv_extent);
-  // the AUV drifts 3 m: planned again from where the USV is, now beside it and past it: the way no longer passes it
+  EXPECT_TRUE(keep[0].boxed);
+  // the AUV drifts 3 m: planned again from where the USV is, now beside it and past it: the way no longer passes it,
+  // so no box about it, but a detour round anything else must not take its side (a buoy's box reaching forward from
+  // behind the USV put a corner 2.7 m from the AUV, evaluation seed 11000 run 116)
   m.onPose({41, 8}, -kPi / 2, 170.0);
   m.onAuvStatus(AuvPhase::Surfaced, {50, 3, 0}, true, 171.0);
   ASSERT_TRUE(m.takePath());
-  EXPECT_TRUE(m.keepClear().empty());
+  const auto beside = m.keepClear();
+  ASSERT_EQ(beside.size(), 1u);
+  EXPECT_FALSE(beside[0].boxed);
+  EXPECT_LT((beside[0].origin - Eigen::Vector2d(50, 3)).norm(), 1e-9);
   // closing in along the axis: the bow's recovery distance is the approach's own, guidance is not told of the AUV
   m.onPose({50, 22}, -kPi / 2, 200.0);
   for (double t = 200.0; t <= 212.0; t += 0.5) m.onAuvStatus(AuvPhase::Surfaced, {50, 3, 0}, true, t);
