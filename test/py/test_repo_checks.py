@@ -102,33 +102,19 @@ def test_the_test_code_check_itself():
 
 
 INLINE_READ = re.compile(r'\b[A-Za-z_]\w*(?:\.|->)(number|requiredNumber|integer|flag|text|choice|numbers)\(\s*"')
-# ROS files that still read parameters one by one (name, default and range written at the read, so they reach no
-# table, no docs/parameters.md and no .cfg check): how many reads each. The list only shrinks: a file leaves it
-# once its parameters are a table's; a new file or a new inline read fails.
-INLINE_READS_LEFT = {
-    "src/can/can_emulator_nodelet.cpp": 2, "src/can/can_gateway_nodelet.cpp": 7, "src/cola2/cola2_bridge_nodelet.cpp": 8,
-    "src/control/control_nodelet.cpp": 3, "src/geo/world_frames_nodelet.cpp": 3, "src/guidance/guidance_nodelet.cpp": 2,
-    "src/navigation/auv_navigation_nodelet.cpp": 1, "src/navigation/gps_navigation_nodelet.cpp": 6,
-    "src/perception/sonar_targets_nodelet.cpp": 3, "src/safety/safety_nodelet.cpp": 3, "src/sim/auv_sim_nodelet.cpp": 15,
-    "src/sim/ros_sim.h": 5, "src/sim/usv_sim_nodelet.cpp": 10, "src/usbl/usbl_nodelet.cpp": 6,
-    "src/usbl/usbl_sim_nodelet.cpp": 5,
-}
 
 
 def test_parameters_are_read_through_tables():
-    """A ROS file reads its parameters through a table (ros_util::readParams / readEntry), not one by one."""
-    found = {}
+    """A ROS file reads its parameters through a table (ros_util::readParams / readEntry), never one by one (name,
+    default and range written at the read would reach no table, no docs/parameters.md and no .cfg check)."""
+    found = []
     for f in glob.glob(os.path.join(REPO, "src", "*", "*")):
         b = os.path.basename(f)
         if not (b.endswith(("_nodelet.cpp", "_main.cpp")) or b.startswith("ros_")):
             continue
-        n = sum(1 for line in open(f, encoding="utf-8") if INLINE_READ.search(line))
-        if n:
-            found[os.path.relpath(f, REPO)] = n
-    grown = {f: n for f, n in found.items() if n > INLINE_READS_LEFT.get(f, 0)}
-    assert not grown, "parameters read outside a table (make them a struct's table()): %s" % grown
-    done = sorted(f for f in INLINE_READS_LEFT if found.get(f, 0) < INLINE_READS_LEFT[f])
-    assert not done, "fewer inline reads than listed: lower INLINE_READS_LEFT for %s" % done
+        found += ["%s:%d: %s" % (os.path.relpath(f, REPO), n, line.strip())
+                  for n, line in enumerate(open(f, encoding="utf-8"), 1) if INLINE_READ.search(line)]
+    assert not found, "parameters read outside a table (make them a struct's table()):\n" + "\n".join(found)
 
 
 def test_the_inline_read_check_itself():
