@@ -38,11 +38,10 @@ class CanEmulatorNodelet : public nodelet::Nodelet {
     geo::LatLonAlt origin;  // the GPS-compass reports the simulated truth in the site's frame
     try {
       origin = ros_util::readOrigin();
-      bus.iface = p.text("interface", "vcan0");
-      bus.auto_restart = false;  // a simulated device never restarts the controller
       ros_util::readParams(p, can::EmulatorConfig::table(), cfg);
-      const std::string model = p.text("model_params", "");  // the jets' model (config/models/), as the simulator's
-      if (!model.empty()) jets = models::loadUsvParams(model);
+      bus.iface = cfg.interface;
+      bus.auto_restart = false;  // a simulated device never restarts the controller
+      if (!cfg.model_params.empty()) jets = models::loadUsvParams(cfg.model_params);
       jets_ = std::make_unique<can::WaterjetEmulator>(jets, cfg.command_timeout, cfg.addresses, counters_);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

@@ -53,16 +53,14 @@ class CanGatewayNodelet : public nodelet::Nodelet {
     can::GatewayConfig cfg;
     models::UsvParams jets;
     try {
-      bus.iface = p.text("interface", "can0");
-      bus.fd = p.flag("fd", false);
-      bus.auto_restart = p.flag("auto_restart", true);
-      bus.restart_delay = p.number("restart_delay", 0.1, 0.0, 10.0);
+      can::GatewayNodeParams np;
+      ros_util::readParams(p, can::GatewayNodeParams::table(), np);
+      bus = np.bus;
       ros_util::readParams(p, can::GatewayConfig::table(), cfg);
       cfg.validate();
-      const std::string model = p.text("model_params", "");  // the jets the allocation drives (config/models/)
-      if (!model.empty()) jets = models::loadUsvParams(model);
-      gps_frame_ = p.text("gps_frame", "usv/gps");
-      world_frame_ = p.text("world_frame", "map");
+      if (!np.model_params.empty()) jets = models::loadUsvParams(np.model_params);
+      gps_frame_ = np.gps_frame;
+      world_frame_ = np.world_frame;
       gateway_ = std::make_unique<can::CanGateway>(bus, cfg, jets, counters_);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

@@ -82,7 +82,9 @@ const ParamTable<EmulatorConfig>& EmulatorConfig::table() {
           .number("waterjet/command_timeout", &C::command_timeout, 0.05, 10.0, "s",
                   "a unit without commands for this long goes neutral and raises FAULT_COMMS")
           .integer("address/gps", &C::gps_address, 0, 253, "source address of the GPS-compass")
-          .nest("address/", &C::addresses, jet::Addresses::table());
+          .nest("address/", &C::addresses, jet::Addresses::table())
+          .string("interface", &C::interface, "the SocketCAN interface the emulated units are on")
+          .string("model_params", &C::model_params, "the jets' model (config/models/; empty: the built-in one)");
   return t;
 }
 

@@ -25,6 +25,21 @@ const ParamTable<GatewayConfig>& GatewayConfig::table() {
   return t;
 }
 
+const ParamTable<GatewayNodeParams>& GatewayNodeParams::table() {
+  using P = GatewayNodeParams;
+  static const ParamTable<P> t =
+      ParamTable<P>()
+          .string("interface", &P::bus, &SocketCanOptions::iface, "the SocketCAN interface of the jets' bus")
+          .flag("fd", &P::bus, &SocketCanOptions::fd, "CAN FD when the interface's MTU allows it")
+          .flag("auto_restart", &P::bus, &SocketCanOptions::auto_restart, "restart the controller after bus-off")
+          .number("restart_delay", &P::bus, &SocketCanOptions::restart_delay, 0.0, 10.0, "s",
+                  "between bus-off and the restart request")
+          .string("model_params", &P::model_params, "the jets' model (config/models/; empty: the built-in one)")
+          .string("gps_frame", &P::gps_frame, "frame of the GPS-compass fix")
+          .string("world_frame", &P::world_frame, "frame of the heading and the velocity over ground (ENU)");
+  return t;
+}
+
 void GatewayConfig::validate() const {
   table().validate(*this);
   requireRange("watchdog_timeout", watchdog_timeout, period(), 10.0);

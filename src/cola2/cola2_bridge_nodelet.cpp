@@ -33,18 +33,14 @@ class Cola2BridgeNodelet : public nodelet::Nodelet {
     ros_util::ParamReader p(getPrivateNodeHandle());
     geo::LatLonAlt o;
     try {
-      ns_ = p.text("cola2_namespace", "/girona500");
-      const int n = p.integer("thrusters", 5, 1, 16);
-      const auto id = cola2::ThrusterMapping::identity(n);
-      std::vector<double> order_default(id.order.begin(), id.order.end());
-      const auto order = p.numbers("thruster_order", order_default, static_cast<std::size_t>(n), 0, n - 1);
-      map_.order.assign(order.begin(), order.end());
-      map_.sign = p.numbers("thruster_sign", id.sign, static_cast<std::size_t>(n), -1, 1);
-      map_.validate(n);
-      watchdog_ = p.number("watchdog_timeout", 1.0, 0.05, 30);
-      neutral_messages_ = p.integer("neutral_messages", 5, 1, 1000);
-      startup_timeout_ = p.number("startup_timeout", 10.0, 0, 600);
-      base_frame_ = p.text("base_frame", "auv/base_link");
+      cola2::BridgeParams bp;
+      ros_util::readParams(p, cola2::BridgeParams::table(), bp);
+      ns_ = bp.cola2_namespace;
+      map_ = bp.mapping();
+      watchdog_ = bp.watchdog_timeout;
+      neutral_messages_ = bp.neutral_messages;
+      startup_timeout_ = bp.startup_timeout;
+      base_frame_ = bp.base_frame;
       o = ros_util::readOrigin();
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

@@ -32,6 +32,32 @@ void ThrusterMapping::validate(int thrusters) const {
     if (s != 1.0 && s != -1.0) throw ConfigError("parameter 'thruster_sign' entries must be 1 or -1");
 }
 
+const ParamTable<BridgeParams>& BridgeParams::table() {
+  using P = BridgeParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .string("cola2_namespace", &P::cola2_namespace,
+              "COLA2's robot namespace: <ns>/navigator/navigation, <ns>/controller/thruster_setpoints")
+      .integer("thrusters", &P::thrusters, 1, 16, "thrusters of the vehicle")
+      .numbers("thruster_order", &P::thruster_order, 0, 0, 15, "",
+               "COLA2 setpoint i is ours thruster_order[i]: a permutation of 0..thrusters-1 (empty: the identity)")
+      .numbers("thruster_sign", &P::thruster_sign, 0, -1, 1, "", "times thruster_sign[i], 1 or -1 (empty: all 1)")
+      .number("watchdog_timeout", &P::watchdog_timeout, 0.05, 30.0, "s",
+              "no thruster setpoints of ours for this long: zero to COLA2's thrusters")
+      .integer("neutral_messages", &P::neutral_messages, 1, 1000, "zero setpoints sent when the watchdog trips")
+      .number("startup_timeout", &P::startup_timeout, 0.0, 600.0, "s",
+              "warn when COLA2's navigation is still silent this long after start (0: never)")
+      .string("base_frame", &P::base_frame, "the AUV's body frame");
+  return t;
+}
+
+ThrusterMapping BridgeParams::mapping() const {
+  ThrusterMapping m = ThrusterMapping::identity(thrusters);
+  if (!thruster_order.empty()) m.order.assign(thruster_order.begin(), thruster_order.end());
+  if (!thruster_sign.empty()) m.sign = thruster_sign;
+  m.validate(thrusters);
+  return m;
+}
+
 std::optional<std::vector<double>> ThrusterMapping::apply(const std::vector<double>& ours) const {
   if (ours.size() != order.size()) return std::nullopt;
   std::vector<double> out(ours.size());

@@ -47,7 +47,9 @@ class ControlNodelet : public nodelet::Nodelet {
         joy_pub_ = nh.advertise<JoystickCommand>("joystick_cmd", 10);
       } else if (cp.vehicle == "girona500") {
         ros_util::readParams(p, control::Girona500ControlParams::table(), cp.girona500);
-        readThrusters(p, cp.girona500);
+        control::ThrusterLayout layout = control::ThrusterLayout::of(cp.girona500);  // hardware overrides
+        ros_util::readParams(p, control::ThrusterLayout::table(), layout);
+        layout.applyTo(cp.girona500);
         thr_pub_ = nh.advertise<ThrusterSetpoints>("thruster_setpoints", 10);
       } else {
         ros_util::readParams(p, control::AcolorControlParams::table(), cp.acolor);
@@ -92,20 +94,6 @@ class ControlNodelet : public nodelet::Nodelet {
     });
     timer_ = nh.createTimer(ros::Duration(1.0 / cp.rate), &ControlNodelet::onTimer, this);
     NODELET_INFO("%s control at %.1f Hz", cp.vehicle.c_str(), cp.rate);
-  }
-
-  // Hardware overrides of the allocation (another thruster layout): the matrix row after row.
-  static void readThrusters(const ros_util::ParamReader& p, control::Girona500ControlParams& c) {
-    const int n = p.integer("thrusters", static_cast<int>(c.max_thrust.size()), 1, 16);
-    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    const RowMajor def = c.tcm;
-    const auto tcm = p.numbers("tcm", n == def.cols() ? std::vector<double>(def.data(), def.data() + def.size())
-                                                      : std::vector<double>(),
-                               4 * n, -100.0, 100.0);
-    c.tcm = Eigen::Map<const RowMajor>(tcm.data(), 4, n);
-    const std::vector<double> def_max(c.max_thrust.data(), c.max_thrust.data() + c.max_thrust.size());
-    const auto mx = p.numbers("max_thrust", n == c.max_thrust.size() ? def_max : std::vector<double>(), n, 1e-3, 1e6);
-    c.max_thrust = Eigen::Map<const Eigen::VectorXd>(mx.data(), n);
   }
 
   // The reconfigure server starts from the loaded (yaml) values; the .cfg names are the active vehicle's table's.

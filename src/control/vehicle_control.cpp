@@ -322,6 +322,42 @@ void Girona500ControlParams::validate() const {
   if (tcm.rows() != 4) throw ConfigError("parameter 'tcm' must have 4 rows (X, Y, Z, N)");
 }
 
+namespace {
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+}  // namespace
+
+ThrusterLayout ThrusterLayout::of(const Girona500ControlParams& c) {
+  ThrusterLayout l;
+  l.thrusters = static_cast<int>(c.max_thrust.size());
+  const RowMajor tcm = c.tcm;
+  l.tcm.assign(tcm.data(), tcm.data() + tcm.size());
+  l.max_thrust.assign(c.max_thrust.data(), c.max_thrust.data() + c.max_thrust.size());
+  return l;
+}
+
+const ParamTable<ThrusterLayout>& ThrusterLayout::table() {
+  using P = ThrusterLayout;
+  static const ParamTable<P> t = ParamTable<P>()
+      .integer("thrusters", &P::thrusters, 1, 16, "thrusters of the layout")
+      .numbers("tcm", &P::tcm, 0, -100.0, 100.0, "",
+               "thruster configuration matrix row after row: X, Y, Z, N of `thrusters` values each")
+      .numbers("max_thrust", &P::max_thrust, 0, 1e-3, 1e6, "N", "each thruster's largest thrust");
+  return t;
+}
+
+void ThrusterLayout::applyTo(Girona500ControlParams& c) const {
+  auto need = [](const char* name, const std::vector<double>& v, std::size_t n) {
+    if (v.size() != n)
+      throw ConfigError("parameter '" + std::string(name) + "' has " + std::to_string(v.size()) +
+                        " elements, expected " + std::to_string(n));
+  };
+  const auto n = static_cast<std::size_t>(thrusters);
+  need("tcm", tcm, 4 * n);
+  need("max_thrust", max_thrust, n);
+  c.tcm = Eigen::Map<const RowMajor>(tcm.data(), 4, thrusters);
+  c.max_thrust = Eigen::Map<const Eigen::VectorXd>(max_thrust.data(), thrusters);
+}
+
 Girona500Controller::Girona500Controller(const Girona500ControlParams& p) { setParams(p); }
 
 void Girona500Controller::setParams(const Girona500ControlParams& p) {

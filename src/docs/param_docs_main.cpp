@@ -8,6 +8,7 @@
 #include "offshore_gnc/can/emulator.h"
 #include "offshore_gnc/can/gateway.h"
 #include "offshore_gnc/closed_loop/stacks.h"
+#include "offshore_gnc/cola2/mapping.h"
 #include "offshore_gnc/control/control_loop.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/guidance/pipeline.h"
@@ -19,6 +20,7 @@
 #include "offshore_gnc/navigation/gps_navigator.h"
 #include "offshore_gnc/perception/lidar_targets.h"
 #include "offshore_gnc/perception/sensor_frame.h"
+#include "offshore_gnc/perception/sonar_image.h"
 #include "offshore_gnc/perception/sonar_targets.h"
 #include "offshore_gnc/perception/wall_detection.h"
 #include "offshore_gnc/relay/config.h"
@@ -26,6 +28,8 @@
 #include "offshore_gnc/sim/contact.h"
 #include "offshore_gnc/sim/radio.h"
 #include "offshore_gnc/sim/sensors.h"
+#include "offshore_gnc/sim/simulation.h"
+#include "offshore_gnc/sim/simulator_params.h"
 #include "offshore_gnc/usbl/config.h"
 #include "offshore_gnc/usbl/session.h"
 
@@ -80,6 +84,9 @@ int main() {
         control::UsvControlParams::table(), {{"default", control::UsvControlParams()}});
   table("Girona500 control", "`config/control/girona500.yaml` (thesis Table 4.3).",
         control::Girona500ControlParams::table(), {{"default", control::Girona500ControlParams()}});
+  table("Girona500 thruster layout", "`config/control/girona500.yaml` -> the Control nodelet: another thruster layout "
+        "than the model's (both lists with another count).", control::ThrusterLayout::table(),
+        {{"default", control::ThrusterLayout::of(control::Girona500ControlParams())}});
   table("aColor control",
         "`config/control/acolor.yaml` (thesis Table 4.2); in simulation `config/control/acolor_sim.yaml` over it "
         "(the simulated aColor's yaw gains, docs/guidance-control.md). The surge PWM is the one that holds guidance's "
@@ -93,6 +100,8 @@ int main() {
         mission::CoverageArea::table(), {{"default", mission::CoverageArea()}}, "coverage/");
   table("GPS-compass navigation", "`config/usv.yaml` -> the GpsNavigation nodelet.",
         navigation::GpsNavigatorConfig::table(), {{"default", navigation::GpsNavigatorConfig()}});
+  table("GPS-compass navigation node", "`config/usv.yaml` -> the GpsNavigation nodelet around its navigator.",
+        navigation::GpsNavigationParams::table(), {{"default", navigation::GpsNavigationParams()}});
   table("USV hull", "`config/usv.yaml`: the outline a mission's outcome judges contact with (sim/contact.h), guidance "
         "keeps clear of obstacles when it holds, and the recovery's bow distance is measured from (models/hull.h).",
         sim::HullFootprint::table(), {{"default", sim::HullFootprint()}});
@@ -104,8 +113,25 @@ int main() {
         usbl::qualityLimitsTable(), {{"default", usbl::QualityLimits()}});
   table("Simulated USBL pair", "`config/usbl/usbl.yaml` -> the UsblSim nodelet and the ROS-free mission.",
         usbl::beaconSimTable(), {{"default", usbl::BeaconSimConfig()}});
+  table("USBL node",
+        "`config/usbl/usbl.yaml` -> the Usbl nodelet: its line, its frame, the AUV's depth from its pressure.",
+        usbl::UsblNodeParams::table(), {{"default", usbl::UsblNodeParams()}});
+  table("Simulated USBL pair node", "`config/usbl/usbl.yaml` -> the UsblSim nodelet beside the pair's acoustics.",
+        usbl::BeaconSimNodeParams::table(), {{"default", usbl::BeaconSimNodeParams()}});
   table("Simulated GPS-compass", "the UsvSim nodelet's private `gps/...` parameters (docs/simulation.md); the "
         "ROS-free mission uses these defaults.", sim::GpsCompassConfig::table(), {{"default", sim::GpsCompassConfig()}});
+  sim::RunParams auv_run;
+  auv_run.seed = 2;
+  table("Simulator run", "the UsvSim and AuvSim nodelets' private parameters (docs/simulation.md).",
+        sim::RunParams::table(), {{"usv", sim::RunParams()}, {"auv", auv_run}});
+  table("Simulated USV", "the UsvSim nodelet's private `lidar/...` parameters: the simulated MRS1000.",
+        sim::UsvSimulation::Config::table(), {{"default", sim::UsvSimulation::Config()}});
+  table("USV simulator", "the UsvSim nodelet's model and ROS names.", sim::UsvSimNodeParams::table(),
+        {{"default", sim::UsvSimNodeParams()}});
+  table("Simulated AUV", "the AuvSim nodelet's private `sonar/...` (the simulated Micron) and `odom/...` parameters.",
+        sim::AuvSimulation::Config::table(), {{"default", sim::AuvSimulation::Config()}});
+  table("AUV simulator", "the AuvSim nodelet's model and ROS names.", sim::AuvSimNodeParams::table(),
+        {{"default", sim::AuvSimNodeParams()}});
   table("Simulated depth sensor", "the AuvSim nodelet's private `depth/...` parameters.", sim::DepthConfig::table(),
         {{"default", sim::DepthConfig()}});
   table("Simulated AHRS", "the AuvSim nodelet's private `ahrs/...` parameters.", sim::AhrsConfig::table(),
@@ -127,10 +153,14 @@ int main() {
         "scenario). Required: there is no default site. The two vehicles' relays refuse each other when their "
         "origins differ (docs/relay.md).",
         geo::LatLonAlt::table(), {}, "origin/");
+  table("World frames", "the WorldFrames nodelet's private parameters (launch/site.launch).",
+        geo::WorldFramesParams::table(), {{"default", geo::WorldFramesParams()}});
   table("LiDAR targets", "`config/perception/lidar_usv.yaml` -> the LidarTargets nodelet.",
         perception::LidarConfig::table(), {{"default", perception::LidarConfig()}});
   table("Sonar targets", "`config/perception/sonar_auv.yaml` -> the SonarTargets and WallDetection nodelets.",
         perception::SonarConfig::table(), {{"default", perception::SonarConfig()}});
+  table("Sonar image", "`config/perception/sonar_auv.yaml` -> the SonarTargets nodelet's image of the beams.",
+        perception::SonarImageParams::table(), {{"default", perception::SonarImageParams()}});
   table("Wall detection", "`config/perception/sonar_auv.yaml` -> the WallDetection nodelet (Publication II).",
         perception::WallConfig::table(), {{"default", perception::WallConfig()}});
   table("Sensor frames", "both perception files: where targets are put and how long a frame waits for its pose.",
@@ -151,9 +181,13 @@ int main() {
         "all when empty).", relay::TopicConfig::table(), {{"default", relay::TopicConfig()}}, "topics[]/");
   table("CAN gateway", "`config/can/usv.yaml` -> the CanGateway nodelet (docs/can.md).", can::GatewayConfig::table(),
         {{"default", can::GatewayConfig()}});
+  table("CAN gateway node", "`config/can/usv.yaml` -> the CanGateway nodelet: its bus, the jets' model, its frames.",
+        can::GatewayNodeParams::table(), {{"default", can::GatewayNodeParams()}});
   table("CAN emulator",
         "`config/can/usv.yaml` -> the CanEmulator nodelet (`launch/can_usv.launch emulate:=true`, docs/can.md).",
         can::EmulatorConfig::table(), {{"default", can::EmulatorConfig()}});
+  table("Safety supervisor node", "`config/safety/<vehicle>.yaml` -> the SafetySupervisor nodelet.",
+        safety::SupervisorNodeParams::table(), {{"default", safety::SupervisorNodeParams()}});
   table("Safety supervisor", "the vehicles' supervisor rules (docs/safety.md); `usv` and `auv` are the presets.",
         safety::SupervisorConfig::table(), {{"usv", safety::usvDefaults()}, {"auv", safety::auvDefaults()}});
   for (const auto& v : {std::make_pair("USV", safety::usvDefaults()), std::make_pair("AUV", safety::auvDefaults())}) {
@@ -164,5 +198,7 @@ int main() {
                   r.release, safety::actionName(r.action), r.recovery ? "when clear" : "latched until reset");
     std::printf("\n");
   }
+  table("COLA2 bridge", "`config/cola2/girona500.yaml` -> the Cola2Bridge nodelet (the Girona500's own stack).",
+        cola2::BridgeParams::table(), {{"default", cola2::BridgeParams()}});
   return 0;
 }

@@ -23,6 +23,15 @@ const ParamTable<LatLonAlt>& LatLonAlt::table() {
   return t;
 }
 
+const ParamTable<WorldFramesParams>& WorldFramesParams::table() {
+  using P = WorldFramesParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .string("world_frame", &P::world_frame, "the ENU frame at the origin")
+      .string("ned_frame", &P::ned_frame, "the NED frame at the origin (the GNC's)")
+      .choice("national_grid", &P::national_grid, {"none", "etrs-tm35fin"}, "a national grid reported beside UTM/UPS");
+  return t;
+}
+
 namespace {
 constexpr int kTm35Zone = 35;
 // EPSG:3067's area of use (Finland, onshore and offshore) [deg]

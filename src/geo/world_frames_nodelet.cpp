@@ -26,10 +26,12 @@ class WorldFramesNodelet : public nodelet::Nodelet {
     std::vector<geo::GridPoint> grids;  // the origin's UTM/UPS zone, then the national grid when asked for
     try {
       o = ros_util::readOrigin();
-      world_frame_ = p.text("world_frame", "map");
-      ned_frame_ = p.text("ned_frame", "map_ned");
+      geo::WorldFramesParams wp;
+      ros_util::readParams(p, geo::WorldFramesParams::table(), wp);
+      world_frame_ = wp.world_frame;
+      ned_frame_ = wp.ned_frame;
       grids.push_back(geo::toUtmUps(o));
-      if (p.choice("national_grid", "none", {"none", "etrs-tm35fin"}) == "etrs-tm35fin") grids.push_back(geo::toTm35fin(o));
+      if (wp.national_grid == "etrs-tm35fin") grids.push_back(geo::toTm35fin(o));
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;

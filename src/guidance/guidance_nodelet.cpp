@@ -34,9 +34,11 @@ class GuidanceNodelet : public nodelet::Nodelet {
     ros_util::ParamReader p(pnh);
     guidance::GuidanceParams gp;
     try {
-      gp = guidance::GuidanceParams::preset(p.choice("vehicle", "usv", {"usv", "girona500", "acolor"}));
+      guidance::GuidanceParams v;  // the vehicle first: its preset is what the other parameters replace
+      ros_util::readParam(p, guidance::GuidanceParams::table(), "vehicle", v);
+      gp = guidance::GuidanceParams::preset(v.vehicle);
       ros_util::readParams(p, guidance::GuidanceParams::table(), gp);
-      frame_ = p.text("frame_id", "map_ned");
+      frame_ = gp.frame_id;
       pipeline_ = std::make_unique<guidance::GuidancePipeline>(gp);
       if (gp.vehicle == "usv") {  // a hold keeps the hull clear: its outline of the vehicle config (vehicle/outline)
         models::HullFootprint hull;

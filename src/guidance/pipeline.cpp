@@ -77,7 +77,8 @@ const ParamTable<GuidanceParams>& GuidanceParams::table() {
       .number("sbb/replan_distance", &P::replan_distance, 0.0, 100.0, "m",
               "re-set the LOS path only when a planned waypoint moved more than this")
       .number("odom_timeout", &P::odom_timeout, 0.01, 60.0, "s", "older navigation: hold the last good position")
-      .number("rate", &P::rate, 0.1, 100.0, "Hz", "guidance steps per second");
+      .number("rate", &P::rate, 0.1, 100.0, "Hz", "guidance steps per second")
+      .string("frame_id", &P::frame_id, "frame of the path and status the nodelet publishes (NED)");
   return t;
 }
 

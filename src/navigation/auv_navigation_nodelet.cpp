@@ -88,7 +88,7 @@ class AuvNavigationNodelet : public nodelet::Nodelet {
     try {
       ros_util::readParams(p, navigation::AuvNavigatorConfig::table(), cfg);
       ros_util::readParams(p, navigation::AuvNavigationParams::table(), params_);
-      base_frame_ = p.text("base_frame", "auv/base_link");
+      base_frame_ = params_.base_frame;
       nav_ = std::make_unique<navigation::AuvNavigator>(cfg);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

@@ -13,19 +13,14 @@ const ParamTable<AuvNavigationParams>& AuvNavigationParams::table() {
       .number("fix_min_sigma", &P::fix_min_sigma, 0.001, 100.0, "m",
               "a USBL fix's position sigma at least this (the USV GPS's error and its pose at the fix time)")
       .number("fix_angle_sigma", &P::fix_angle_sigma, 0.0, 0.5, "rad", "and at least the slant range times this")
-      .number("water_density", &P::water_density, 990, 1050, "kg/m^3", "depth = (p - surface_pressure) / (density g)")
-      .number("surface_pressure", &P::surface_pressure, 80000, 120000, "Pa", "the atmosphere over the water");
+      .nest("", &P::pressure, geo::PressureDepth::table())
+      .string("base_frame", &P::base_frame, "the AUV's body frame: /auv/odom's child frame, a DVL's expected frame");
   return t;
 }
 
 Eigen::Matrix3d AuvNavigationParams::fixCovariance(double range) const {
   const double sigma = std::max(fix_min_sigma, range * fix_angle_sigma);
   return Eigen::Matrix3d::Identity() * sigma * sigma;
-}
-
-double AuvNavigationParams::depthOf(double pressure_pa) const {
-  constexpr double kGravity = 9.80665;
-  return (pressure_pa - surface_pressure) / (water_density * kGravity);
 }
 
 }  // namespace navigation

@@ -28,15 +28,12 @@ class GpsNavigationNodelet : public nodelet::Nodelet {
     navigation::GpsNavigatorConfig cfg;
     try {
       o = ros_util::readOrigin();
-      const auto a = p.numbers("antenna", {0.0, 0.0, -2.5}, 3, -50, 50);
-      cfg.antenna = {a[0], a[1], a[2]};
-      cfg.heading_timeout = p.number("heading_timeout", cfg.heading_timeout, 0.01, 60);
-      cfg.velocity_filter = p.number("velocity_filter", cfg.velocity_filter, 0, 60);
-      // angular.z of the velocity message is the receiver's rate of turn (simulator); false for receivers that
-      // report none (NMEA 2000 COG/SOG through the CAN gateway): the rate then comes from differenced headings
-      use_rate_of_turn_ = p.flag("use_rate_of_turn", true);
-      base_frame_ = p.text("base_frame", "usv/base_link");
-      world_frame_ = p.text("world_frame", "map");
+      ros_util::readParams(p, navigation::GpsNavigatorConfig::table(), cfg);
+      navigation::GpsNavigationParams np;
+      ros_util::readParams(p, navigation::GpsNavigationParams::table(), np);
+      use_rate_of_turn_ = np.use_rate_of_turn;
+      base_frame_ = np.base_frame;
+      world_frame_ = np.world_frame;
       nav_ = std::make_unique<navigation::GpsNavigator>(o, cfg);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

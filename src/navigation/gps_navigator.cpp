@@ -22,6 +22,16 @@ const ParamTable<GpsNavigatorConfig>& GpsNavigatorConfig::table() {
   return t;
 }
 
+const ParamTable<GpsNavigationParams>& GpsNavigationParams::table() {
+  using P = GpsNavigationParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .flag("use_rate_of_turn", &P::use_rate_of_turn,
+            "the velocity message's angular.z is the receiver's rate of turn (false: from differenced headings)")
+      .string("base_frame", &P::base_frame, "the USV's body frame")
+      .string("world_frame", &P::world_frame, "frame of /usv/odom");
+  return t;
+}
+
 GpsNavigator::GpsNavigator(const geo::LatLonAlt& origin, const GpsNavigatorConfig& cfg) : frame_(origin), cfg_(cfg) {
   GpsNavigatorConfig::table().validate(cfg);
   for (int i = 0; i < 3; ++i) requireRange("antenna", cfg.antenna[i], -50, 50);

@@ -29,9 +29,10 @@ class SonarTargetsNodelet : public nodelet::Nodelet {
     ros_util::ParamReader p(pnh);
     try {
       sonar_.readParams(p);
-      image_ = std::make_unique<perception::SonarImage>(p.number("image_range", 30.0, 0.1, 1e3),
-                                                        p.integer("image_radius_px", 250, 8, 4096));
-      image_every_ = p.integer("image_every_beams", 20, 1, 100000);
+      perception::SonarImageParams ip;
+      ros_util::readParams(p, perception::SonarImageParams::table(), ip);
+      image_ = std::make_unique<perception::SonarImage>(ip.image_range, ip.image_radius_px);
+      image_every_ = ip.image_every_beams;
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;

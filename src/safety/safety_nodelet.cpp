@@ -72,11 +72,13 @@ class SafetySupervisorNodelet : public nodelet::Nodelet {
       // No default: which preset guards a vehicle is never guessed.
       if (!pnh.hasParam("vehicle"))
         throw ConfigError("required parameter '" + p.full("vehicle") + "' is missing (usv or auv)");
-      vehicle_ = p.choice("vehicle", "usv", {"usv", "auv"});
+      safety::SupervisorNodeParams np;
+      ros_util::readParams(p, safety::SupervisorNodeParams::table(), np);
+      vehicle_ = np.vehicle;
       safety::SupervisorConfig cfg = vehicle_ == "usv" ? safety::usvDefaults() : safety::auvDefaults();
       ros_util::readParams(p, safety::SupervisorConfig::table(), cfg);  // names and ranges: the core's table
-      rate = p.number("rate", 10.0, 0.1, 1000.0);
-      if (vehicle_ == "usv") manual_timeout_ = p.number("manual_timeout", manual_timeout_, 0.05, 60.0);
+      rate = np.rate;
+      if (vehicle_ == "usv") manual_timeout_ = np.manual_timeout;
       sup_ = std::make_unique<safety::Supervisor>(cfg);  // validates the table's ranges and the region
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());

@@ -126,6 +126,16 @@ const ParamTable<SupervisorConfig>& SupervisorConfig::table() {
   return t;
 }
 
+const ParamTable<SupervisorNodeParams>& SupervisorNodeParams::table() {
+  using P = SupervisorNodeParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .choice("vehicle", &P::vehicle, {"usv", "auv"}, "the vehicle whose preset the rules start from (required)")
+      .number("rate", &P::rate, 0.1, 1000.0, "Hz", "supervisor steps per second")
+      .number("manual_timeout", &P::manual_timeout, 0.05, 60.0, "s",
+              "USV: a manual command this old no longer holds autonomy off");
+  return t;
+}
+
 SupervisorConfig usvDefaults() {
   SupervisorConfig c;
   // A few samples' worth (GPS 10 Hz, LiDAR 10 Hz): long enough not to act on one late message, short enough

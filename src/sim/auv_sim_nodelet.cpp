@@ -42,29 +42,17 @@ class AuvSimNodelet : public nodelet::Nodelet {
       lockstep = run.lockstep;
       cfg.dt = run.dt;
       cfg.seed = run.seed;
-      cfg.sonar_on = p.flag("sonar/enabled", true);
-      cfg.sonar.ping_rate_hz = p.number("sonar/ping_rate", cfg.sonar.ping_rate_hz, 0.1, 100);
-      cfg.sonar.range = p.number("sonar/range", cfg.sonar.range, 1, 100);
-      cfg.sonar.step = deg2rad(p.number("sonar/step_deg", rad2deg(cfg.sonar.step), 0.45, 7.2));
-      cfg.sonar.sector = deg2rad(p.number("sonar/sector_deg", rad2deg(cfg.sonar.sector), 1.8, 360));
-      cfg.sonar.bins = p.integer("sonar/bins", cfg.sonar.bins, 8, 1500);
-      const auto sm = p.numbers("sonar/mount", {0.6, 0.0, -0.2}, 3, -10, 10);
-      cfg.sonar.mount = {sm[0], sm[1], sm[2]};
-      cfg.sonar.tilt = deg2rad(p.number("sonar/tilt_deg", rad2deg(cfg.sonar.tilt), -90, 90));
-      ros_util::readParams(p, sim::SonarWaterConfig::table(), cfg.sonar.water, "sonar/");
+      ros_util::readParams(p, sim::AuvSimulation::Config::table(), cfg);
       ros_util::readParams(p, sim::DepthConfig::table(), cfg.depth);
       ros_util::readParams(p, sim::AhrsConfig::table(), cfg.ahrs);
-      cfg.odom_rate_hz = p.number("odom/rate", cfg.odom_rate_hz, 0.1, 100);
-      cfg.ins.position_sigma = p.number("odom/position_sigma", cfg.ins.position_sigma, 0, 100);
-      cfg.ins.drift_per_sqrt_s = p.number("odom/drift", cfg.ins.drift_per_sqrt_s, 0, 10);
-      odom_on_ = p.flag("odom/enabled", true);  // false: the navigation nodelet publishes /auv/odom + TF
       ros_util::readParams(p, sim::DvlConfig::table(), cfg.dvl);
       ros_util::readParams(p, sim::SurfaceGpsConfig::table(), cfg.surface_gps);
-      const std::string vehicle = p.choice("vehicle_model", "girona500", {"girona500", "acolor"});
-      cfg.auv = vehicle == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
-      const std::string params = p.text("model_params", "");  // config/models/*.yaml (models module)
-      if (!params.empty()) cfg.auv = models::loadAuvParams(params);
-      base_frame_ = p.text("base_frame", "auv/base_link");
+      sim::AuvSimNodeParams np;
+      ros_util::readParams(p, sim::AuvSimNodeParams::table(), np);
+      odom_on_ = np.odom_enabled;
+      cfg.auv = np.vehicle_model == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
+      if (!np.model_params.empty()) cfg.auv = models::loadAuvParams(np.model_params);
+      base_frame_ = np.base_frame;
       faults_ = std::make_unique<ros_util::FaultInjector>(nh, "auv",
                                                           std::vector<std::string>{"sonar", "depth", "dvl", "nav"});
       cfg.faults = faults_->plan();

@@ -27,11 +27,12 @@
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/ros/site.h"
 #include "offshore_gnc/sim/scenario.h"
+#include "offshore_gnc/sim/simulator_params.h"
 
 namespace offshore_gnc {
 namespace sim_ros {
 
-// The parameters every simulator nodelet reads: scenario file, time control, step and seed.
+// The parameters every simulator nodelet reads (sim::RunParams), the scenario loaded.
 struct RunSettings {
   sim::Scenario scenario;
   double rate = 1.0, dt = 0.01;
@@ -39,8 +40,11 @@ struct RunSettings {
   std::uint64_t seed = 1;
 };
 inline RunSettings readRunSettings(const ros_util::ParamReader& p, int default_seed) {
+  sim::RunParams rp;
+  rp.seed = default_seed;
+  ros_util::readParams(p, sim::RunParams::table(), rp);
   RunSettings r;
-  const std::string path = p.text("scenario", "");
+  const std::string& path = rp.scenario;
   if (path.empty()) throw ConfigError("parameter '~scenario' (path of the scenario file) is missing");
   r.scenario = sim::loadScenario(path);
   // The simulated world is placed by the scenario's origin, every other node by the site's: both must be one.
@@ -54,10 +58,10 @@ inline RunSettings readRunSettings(const ros_util::ParamReader& p, int default_s
                   path.c_str(), r.scenario.origin.lat_deg, r.scenario.origin.lon_deg, site.lat_deg, site.lon_deg, apart);
     throw ConfigError(msg);
   }
-  r.rate = p.number("rate", 1.0, 0.0, 10000.0);
-  r.lockstep = p.flag("lockstep", false);
-  r.dt = p.number("dt", 0.01, 1e-4, 0.1);
-  r.seed = static_cast<std::uint64_t>(p.integer("seed", default_seed, 0, 1 << 30));
+  r.rate = rp.rate;
+  r.lockstep = rp.lockstep;
+  r.dt = rp.dt;
+  r.seed = static_cast<std::uint64_t>(rp.seed);
   return r;
 }
 

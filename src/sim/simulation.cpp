@@ -59,6 +59,14 @@ UsvSimulation::UsvSimulation(const Scenario& sc, const Config& cfg)
   model_.reset(s);
 }
 
+const ParamTable<UsvSimulation::Config>& UsvSimulation::Config::table() {
+  using P = UsvSimulation::Config;
+  static const ParamTable<P> t = ParamTable<P>()
+      .flag("lidar/enabled", &P::lidar_on, "simulate the LiDAR")
+      .nest("lidar/", &P::lidar, LidarConfig::table());
+  return t;
+}
+
 bool UsvSimulation::setCommand(const models::UsvCommand& c) {
   if (!model_.setCommand(c)) return false;
   from_joystick_ = true;
@@ -181,6 +189,19 @@ AuvSimulation::AuvSimulation(const Scenario& sc, const Config& cfg)
   s.position = {sc.auv.north, sc.auv.east, sc.auv.depth};
   s.yaw = wrapAngle(sc.auv.yaw);
   model_.reset(s);
+}
+
+const ParamTable<AuvSimulation::Config>& AuvSimulation::Config::table() {
+  using P = AuvSimulation::Config;
+  static const ParamTable<P> t = ParamTable<P>()
+      .flag("sonar/enabled", &P::sonar_on, "simulate the imaging sonar")
+      .nest("sonar/", &P::sonar, SonarConfig::table())
+      .number("odom/rate", &P::odom_rate_hz, 0.1, 100.0, "Hz", "the INS-like navigation estimate's rate")
+      .number("odom/position_sigma", &P::ins, &InsConfig::position_sigma, 0.0, 100.0, "m",
+              "its white position noise")
+      .number("odom/drift", &P::ins, &InsConfig::drift_per_sqrt_s, 0.0, 10.0, "m/sqrt(s)",
+              "its horizontal random walk");
+  return t;
 }
 
 bool AuvSimulation::setThrusters(const std::vector<double>& sp) {

@@ -49,22 +49,17 @@ class UsvSimNodelet : public nodelet::Nodelet {
       lockstep = run.lockstep;
       cfg.dt = run.dt;
       cfg.seed = run.seed;
-      cfg.lidar_on = p.flag("lidar/enabled", true);
-      cfg.lidar.rate_hz = p.number("lidar/rate", cfg.lidar.rate_hz, 0.1, 100);
-      cfg.lidar.range_sigma = p.number("lidar/range_sigma", cfg.lidar.range_sigma, 0, 10);
-      const auto lm = p.numbers("lidar/mount", {1.5, 0.0, -1.0}, 3, -50, 50);
-      cfg.lidar.mount = {lm[0], lm[1], lm[2]};
-      ros_util::readParams(p, sim::LidarSeaConfig::table(), cfg.lidar.sea, "lidar/");
+      ros_util::readParams(p, sim::UsvSimulation::Config::table(), cfg);
       ros_util::readParams(p, sim::GpsCompassConfig::table(), cfg.gps);
-      const std::string params = p.text("model_params", "");  // config/models/*.yaml (models module)
-      if (!params.empty()) cfg.usv = models::loadUsvParams(params);
-      cfg.usv.type = p.choice("model", "dynamic", {"dynamic", "nomoto"}) == "nomoto" ? models::UsvModelType::Nomoto
-                                                                                     : models::UsvModelType::Dynamic3Dof;
-      manual_timeout_ = p.number("manual_timeout", 1.0, 0.05, 60);
-      command_topic_ = p.text("command_topic", "/usv/joystick_cmd");
+      sim::UsvSimNodeParams np;
+      ros_util::readParams(p, sim::UsvSimNodeParams::table(), np);
+      if (!np.model_params.empty()) cfg.usv = models::loadUsvParams(np.model_params);
+      cfg.usv.type = np.model == "nomoto" ? models::UsvModelType::Nomoto : models::UsvModelType::Dynamic3Dof;
+      manual_timeout_ = np.manual_timeout;
+      command_topic_ = np.command_topic;
       // /usv/waterjet/applied_setpoints behind the CAN gateway + emulator: the units already chose manual or autonomy
-      jet_command_topic_ = p.text("jet_command_topic", "");
-      base_frame_ = p.text("base_frame", "usv/base_link");
+      jet_command_topic_ = np.jet_command_topic;
+      base_frame_ = np.base_frame;
       faults_ = std::make_unique<ros_util::FaultInjector>(
           nh, "usv", std::vector<std::string>{"gps", "lidar", "jet", "bus_off", "collision"});
       cfg.faults = faults_->plan();

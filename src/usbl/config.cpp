@@ -64,5 +64,29 @@ const ParamTable<BeaconSimConfig>& beaconSimTable() {
   return t;
 }
 
+const ParamTable<UsblNodeParams>& UsblNodeParams::table() {
+  using P = UsblNodeParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .string("port", &P::port, "the transceiver's serial port")
+      .integer("baud", &P::baud, 9600, 230400, "its baud rate")
+      .number("reconnect_period", &P::reconnect_period, 0.05, 60, "s", "between attempts to open the port")
+      .nest("", &P::pressure, geo::PressureDepth::table())
+      .string("frame_id", &P::frame_id, "the transceiver's frame");
+  return t;
+}
+
+const ParamTable<BeaconSimNodeParams>& BeaconSimNodeParams::table() {
+  using P = BeaconSimNodeParams;
+  static const ParamTable<P> t = ParamTable<P>()
+      .string("port", &P::port, "the pseudo-terminal's path (a symlink): the Usbl nodelet's `port`")
+      .integer("local_beacon_id", &P::local_beacon_id, 1, 15, "the transceiver's own beacon id")
+      .integer("remote_beacon_id", &P::remote_beacon_id, 1, 15, "the only remote beacon in the water")
+      .list("gps_antenna", 3, -50, 50, "m", "the simulated USV's GPS antenna in its body frame (x fwd, y stbd, z down)",
+            [](const P& p) { return std::vector<double>{p.gps_antenna.x(), p.gps_antenna.y(), p.gps_antenna.z()}; },
+            [](P& p, const std::vector<double>& v) { p.gps_antenna = {v[0], v[1], v[2]}; })
+      .integer("seed", &P::seed, 0, 1 << 30, "the acoustics' random seed");
+  return t;
+}
+
 }  // namespace usbl
 }  // namespace offshore_gnc

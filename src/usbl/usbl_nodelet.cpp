@@ -47,19 +47,18 @@ class UsblNodelet : public nodelet::Nodelet {
     usbl::QualityLimits lim;
     geo::LatLonAlt o;
     try {
-      const std::string port = p.text("port", "/dev/ttyUSB0");
-      const int baud = p.integer("baud", 115200, 9600, 230400);
-      retry_ = p.number("reconnect_period", 1.0, 0.05, 60);
+      usbl::UsblNodeParams np;
+      ros_util::readParams(p, usbl::UsblNodeParams::table(), np);
+      retry_ = np.reconnect_period;
       usbl::SessionParams sp;
       ros_util::readParams(p, usbl::SessionParams::table(), sp);
       session_ = std::make_unique<usbl::TransceiverSession>(sp);
       ros_util::readParams(p, usbl::qualityLimitsTable(), lim);
-      water_density_ = p.number("water_density", 1000.0, 990, 1050);
-      surface_pressure_ = p.number("surface_pressure", 101325.0, 80000, 120000);
-      frame_id_ = p.text("frame_id", "usv/usbl");
+      pressure_ = np.pressure;
+      frame_id_ = np.frame_id;
       o = ros_util::readOrigin();
       positioner_ = std::make_unique<usbl::Positioner>(usbl_ros::readMounting(p), lim);
-      port_ = std::make_unique<serial::SerialPort>(port, baud, retry_);
+      port_ = std::make_unique<serial::SerialPort>(np.port, np.baud, retry_);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -274,7 +273,7 @@ class UsblNodelet : public nodelet::Nodelet {
       counters_.increment("bad_pressure");
       return;
     }
-    const double depth = (p.fluid_pressure - surface_pressure_) / (water_density_ * 9.80665);
+    const double depth = pressure_.depthOf(p.fluid_pressure);
     std::lock_guard<std::mutex> lock(mutex_);
     positioner_->addRemoteDepth(p.header.stamp.toSec(), depth);
   }
@@ -283,7 +282,8 @@ class UsblNodelet : public nodelet::Nodelet {
   std::unique_ptr<usbl::TransceiverSession> session_;
   ros::Publisher data_in_pub_;
   ros::Subscriber data_out_sub_;
-  double retry_ = 1.0, water_density_ = 1000.0, surface_pressure_ = 101325.0;
+  double retry_ = 1.0;
+  geo::PressureDepth pressure_;
   std::string frame_id_;
   std::unique_ptr<geo::LocalNed> local_;
   std::unique_ptr<serial::SerialPort> port_;

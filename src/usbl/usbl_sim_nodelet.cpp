@@ -39,17 +39,18 @@ class UsblSimNodelet : public nodelet::Nodelet {
     ros_util::ParamReader p(getPrivateNodeHandle());
     usbl::BeaconSimConfig cfg;
     try {
-      link_ = p.text("port", "/tmp/seatrac_sim");
-      cfg.local_id = static_cast<std::uint8_t>(p.integer("local_beacon_id", 1, 1, 15));
-      cfg.remote_id = static_cast<std::uint8_t>(p.integer("remote_beacon_id", 2, 1, 15));
+      usbl::BeaconSimNodeParams np;
+      ros_util::readParams(p, usbl::BeaconSimNodeParams::table(), np);
+      link_ = np.port;
+      cfg.local_id = static_cast<std::uint8_t>(np.local_beacon_id);
+      cfg.remote_id = static_cast<std::uint8_t>(np.remote_beacon_id);
       cfg.mount = usbl_ros::readMounting(p);
       // The mounting is relative to the point /usv_gps reports (what the USBL node places fixes with), the
       // poses here are the hull's reference point: the transceiver is the GPS antenna's lever arm further.
       // Without it every simulated fix came out 2.5 m too shallow and the 3 m depth gate refused about 20 %.
-      const auto antenna = p.numbers("gps_antenna", {0.0, 0.0, -2.5}, 3, -50, 50);
-      cfg.mount.offset += Eigen::Vector3d(antenna[0], antenna[1], antenna[2]);
+      cfg.mount.offset += np.gps_antenna;
       ros_util::readParams(p, usbl::beaconSimTable(), cfg);
-      cfg.seed = static_cast<unsigned>(p.integer("seed", 1, 0, 1 << 30));
+      cfg.seed = static_cast<unsigned>(np.seed);
       faults_ = std::make_unique<ros_util::FaultInjector>(nh, "auv", std::vector<std::string>{"usbl"});
       cfg.faults = faults_->plan();
       sim_ = std::make_unique<usbl::BeaconSimulator>(cfg);

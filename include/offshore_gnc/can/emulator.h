@@ -4,6 +4,7 @@
 // 129025/127250/129026). Pure logic: the caller feeds frames and time and puts the returned frames on a bus.
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "offshore_gnc/can/frame.h"
@@ -61,6 +62,8 @@ struct EmulatorConfig {
   double command_timeout = 0.5;    // s without commands: the unit goes neutral and raises FAULT_COMMS
   int gps_address = 0x40;
   jet::Addresses addresses;
+  std::string interface = "vcan0";
+  std::string model_params;  // the jets' model (config/models/), as the simulator's; empty: the built-in one
   static const ParamTable<EmulatorConfig>& table();
 };
 

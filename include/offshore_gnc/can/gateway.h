@@ -36,6 +36,14 @@ struct GatewayConfig {
   void validate() const;           // the table's ranges and the cross-field rules; throws ConfigError naming one
 };
 
+// The CanGateway nodelet's own parameters beside GatewayConfig's: its bus, the jets' model and its frames.
+struct GatewayNodeParams {
+  SocketCanOptions bus;
+  std::string model_params;  // the jets the allocation drives (config/models/); empty: the built-in ones
+  std::string gps_frame = "usv/gps", world_frame = "map";
+  static const ParamTable<GatewayNodeParams>& table();
+};
+
 // kJetSilent: autonomy is fresh but a jet stopped answering, so both jets get the neutral command.
 enum class Mode { kAutonomy, kManual, kWatchdog, kJetSilent };
 const char* toString(Mode m);

@@ -3,8 +3,10 @@
 // order, and COLA2's navigation (NavSts: NED in the frame of its own origin, plus latitude/longitude) -> our
 // vehicle state in our map_ned, whatever origin each side uses.
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/models/state.h"
 
@@ -19,6 +21,20 @@ struct ThrusterMapping {
   void validate(int thrusters) const;  // throws ConfigError: a permutation of 0..n-1, signs +-1
   // nullopt when `ours` has the wrong size or a value that is not finite; values clamped to -1..1.
   std::optional<std::vector<double>> apply(const std::vector<double>& ours) const;
+};
+
+// The Cola2Bridge nodelet's parameters. An empty thruster_order or thruster_sign is the identity's (ours in COLA2's
+// order, signs +1) for `thrusters`: its sizes and values depend on that count, checked by mapping().
+struct BridgeParams {
+  std::string cola2_namespace = "/girona500";
+  int thrusters = 5;
+  std::vector<double> thruster_order, thruster_sign;
+  double watchdog_timeout = 1.0;  // [s]
+  int neutral_messages = 5;
+  double startup_timeout = 10.0;  // [s]
+  std::string base_frame = "auv/base_link";
+  static const ParamTable<BridgeParams>& table();
+  ThrusterMapping mapping() const;  // validated: throws ConfigError
 };
 
 struct NavSts {  // the fields of cola2_msgs/NavSts the bridge uses

@@ -182,6 +182,17 @@ struct Girona500ControlParams {
   void validate() const;
 };
 
+// The Control nodelet's override of the Girona500's allocation (another thruster layout, config/control/
+// girona500.yaml): `tcm` row after row (X, Y, Z, N of `thrusters` values each) and `max_thrust` [N]. Defaults:
+// the controller's (the model's layout); with another thruster count both must be given.
+struct ThrusterLayout {
+  int thrusters = 0;
+  std::vector<double> tcm, max_thrust;
+  static ThrusterLayout of(const Girona500ControlParams& c);
+  static const ParamTable<ThrusterLayout>& table();
+  void applyTo(Girona500ControlParams& c) const;  // throws ConfigError naming a list that does not fit `thrusters`
+};
+
 struct Girona500Out {
   Eigen::Vector4d tau = Eigen::Vector4d::Zero();  // requested body wrench (X, Y, Z, N)
   AllocationResult alloc;

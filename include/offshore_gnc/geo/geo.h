@@ -23,6 +23,13 @@ struct LatLonAlt {
   static const ParamTable<LatLonAlt>& table();
 };
 
+// The WorldFrames nodelet's parameters: the ENU and NED frames it publishes about the origin, and the national grid
+// it reports beside the origin's UTM/UPS zone ("none" or "etrs-tm35fin").
+struct WorldFramesParams {
+  std::string world_frame = "map", ned_frame = "map_ned", national_grid = "none";
+  static const ParamTable<WorldFramesParams>& table();
+};
+
 // "LAT,LON[,ALT]" (degrees, degrees, metres; the launch argument origin:=...) -> a checked point; throws
 // ConfigError quoting the text when it is not three (or two) finite numbers in range.
 LatLonAlt parseLatLonAlt(const std::string& text);

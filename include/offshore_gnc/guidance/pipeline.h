@@ -29,6 +29,7 @@ struct GuidanceParams {
   double replan_distance = 0.5;  // re-set the LOS path only when a planned waypoint moved more than this [m]
   double odom_timeout = 1.0;     // older navigation -> hold the last good position [s]
   double rate = 10.0;            // guidance steps per second [Hz]
+  std::string frame_id = "map_ned";  // the Guidance nodelet's: the frame of its path and status (NED)
 
   // The vehicle's defaults (thesis Tables 4.1-4.3 and what the simulations showed; docs/parameters.md).
   static GuidanceParams preset(const std::string& vehicle);

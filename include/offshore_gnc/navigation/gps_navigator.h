@@ -3,6 +3,7 @@
 // body velocity and yaw rate from the receiver's Doppler velocity and rate of turn when it reports them, else
 // from successive fixes and headings (low-pass filtered; far noisier). ROS-free; the GpsNavigation nodelet wraps it.
 #include <optional>
+#include <string>
 
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
@@ -17,6 +18,15 @@ struct GpsNavigatorConfig {
   double heading_timeout = 1.0;         // a fix needs a heading at most this old [s]
   double velocity_filter = 0.5;         // first-order filter time constant on differenced velocity [s]
   static const ParamTable<GpsNavigatorConfig>& table();
+};
+
+// The GpsNavigation nodelet's own parameters around the navigator.
+struct GpsNavigationParams {
+  // angular.z of the velocity message is the receiver's rate of turn (simulator); false for receivers that report
+  // none (NMEA 2000 COG/SOG through the CAN gateway): the rate then comes from differenced headings
+  bool use_rate_of_turn = true;
+  std::string base_frame = "usv/base_link", world_frame = "map";
+  static const ParamTable<GpsNavigationParams>& table();
 };
 
 class GpsNavigator {

@@ -6,8 +6,25 @@
 
 #include <cstdint>
 
+#include "offshore_gnc/common/param_table.h"
+
 namespace offshore_gnc {
 namespace perception {
+
+// The SonarTargets nodelet's image of the beams: its scale and how often it is published.
+struct SonarImageParams {
+  double image_range = 30.0;  // [m]
+  int image_radius_px = 250;
+  int image_every_beams = 20;
+  static const ParamTable<SonarImageParams>& table() {
+    using P = SonarImageParams;
+    static const ParamTable<P> t = ParamTable<P>()
+        .number("image_range", &P::image_range, 0.1, 1e3, "m", "range at the image's edge")
+        .integer("image_radius_px", &P::image_radius_px, 8, 4096, "the image's radius in pixels")
+        .integer("image_every_beams", &P::image_every_beams, 1, 100000, "an image published every this many beams");
+    return t;
+  }
+};
 
 class SonarImage {
  public:

@@ -38,23 +38,36 @@ class ParamReader {
   ros::NodeHandle nh_;
 };
 
+// One parameter of `p`'s table: present on the server (under `prefix`), it replaces the struct's value, checked
+// against the table's range.
+template <class P>
+void readSpec(const ParamReader& r, const ParamSpec<P>& s, P& p, const std::string& prefix = "") {
+  const std::string n = prefix + s.name;
+  switch (s.kind) {
+    case ParamKind::kNumber: s.number(p) = s.scale * r.number(n, s.number(p) / s.scale, s.lo, s.hi); break;
+    case ParamKind::kInteger:
+      s.integer(p) = r.integer(n, s.integer(p), static_cast<int>(s.lo), static_cast<int>(s.hi));
+      break;
+    case ParamKind::kFlag: s.flag(p) = r.flag(n, s.flag(p)); break;
+    case ParamKind::kNumbers: s.set_numbers(p, r.numbers(n, s.get_numbers(p), s.size, s.lo, s.hi)); break;
+    case ParamKind::kChoice: s.choice(p) = r.choice(n, s.choice(p), s.choices); break;
+    case ParamKind::kText: s.string(p) = r.text(n, s.string(p)); break;
+  }
+}
+
 // Fills `p` through its table: each parameter present on the server (under `prefix`) replaces the struct's value,
-// checked against the table's range; then the whole struct is validated (cross-field rules).
+// checked against the table's range.
 template <class P>
 void readParams(const ParamReader& r, const ParamTable<P>& t, P& p, const std::string& prefix = "") {
-  for (const auto& s : t.specs()) {
-    const std::string n = prefix + s.name;
-    switch (s.kind) {
-      case ParamKind::kNumber: s.number(p) = s.scale * r.number(n, s.number(p) / s.scale, s.lo, s.hi); break;
-      case ParamKind::kInteger:
-        s.integer(p) = r.integer(n, s.integer(p), static_cast<int>(s.lo), static_cast<int>(s.hi));
-        break;
-      case ParamKind::kFlag: s.flag(p) = r.flag(n, s.flag(p)); break;
-      case ParamKind::kNumbers: s.set_numbers(p, r.numbers(n, s.get_numbers(p), s.size, s.lo, s.hi)); break;
-      case ParamKind::kChoice: s.choice(p) = r.choice(n, s.choice(p), s.choices); break;
-      case ParamKind::kText: s.string(p) = r.text(n, s.string(p)); break;
-    }
-  }
+  for (const auto& s : t.specs()) readSpec(r, s, p, prefix);
+}
+
+// Only the table's parameter `name`: one that decides the others' defaults (a vehicle's preset), read first.
+template <class P>
+void readParam(const ParamReader& r, const ParamTable<P>& t, const std::string& name, P& p) {
+  const ParamSpec<P>* s = t.find(name);
+  if (!s) throw ConfigError("no parameter '" + name + "' in its table");  // a programming error, named
+  readSpec(r, *s, p);
 }
 
 // One map of a list parameter (an entry of the relay's `topics`, say), read through a table like readParams:

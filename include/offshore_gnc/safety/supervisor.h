@@ -78,6 +78,15 @@ struct SupervisorConfig {
   static const ParamTable<SupervisorConfig>& table();
 };
 
+// The SafetySupervisor nodelet's own parameters: `vehicle` (required: the preset is never guessed) picks the rules'
+// preset, `rate` the supervisor's steps; `manual_timeout` is the USV's (a manual command this old is released).
+struct SupervisorNodeParams {
+  std::string vehicle = "usv";
+  double rate = 10.0;            // [Hz]
+  double manual_timeout = 1.0;   // [s]
+  static const ParamTable<SupervisorNodeParams>& table();
+};
+
 // USV: gps, navigation, lidar, link, command timeouts, region (a 2 km square around the origin), collision,
 // bus off, jets. AUV: navigation, sonar, usbl, depth, link, command timeouts, max depth 50 m and min altitude
 // 2 m (both -> surface).

@@ -109,6 +109,7 @@ struct LidarConfig {
   Eigen::Vector3d mount{1.5, 0.0, -1.0};  // sensor in body FRD [m]: on the bow, 1 m above the waterline
   double mount_yaw = 0.0;
   LidarSeaConfig sea;
+  static const ParamTable<LidarConfig>& table();  // the UsvSim nodelet's lidar/...: rate, noise, mount, the sea's
 };
 // One frame: ranges[layer * beams + beam], NaN = no return. Beam b's azimuth (clockwise, sensor frame) is
 // -aperture/2 + b * step; layer elevation positive = up.
@@ -188,6 +189,7 @@ struct SonarConfig {
   // the horizon to 32.5 deg below it, so the surface stays out of the beam (docs/simulation.md).
   double tilt = deg2rad(15.0);
   SonarWaterConfig water;
+  static const ParamTable<SonarConfig>& table();  // the AuvSim nodelet's sonar/...: the head's scan, the water's
 };
 struct SonarBeamReading {
   double t = 0.0;

@@ -10,6 +10,7 @@
 
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/faults.h"
+#include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/models/auv.h"
 #include "offshore_gnc/models/environment.h"
 #include "offshore_gnc/models/joystick_allocation.h"
@@ -69,6 +70,7 @@ class UsvSimulation {
     double jet_status_rate_hz = 10.0;  // the units' status frames
     double jet_timeout = 0.5;          // the gateway's (config/can/usv.yaml): a unit silent this long is not answering
     CollisionFault collision;
+    static const ParamTable<Config>& table();  // the UsvSim nodelet's lidar/... (gps/...: GpsCompassConfig's)
   };
   struct Outputs {
     std::optional<GpsCompassReading> gps;
@@ -133,6 +135,7 @@ class AuvSimulation {
     // "sonar", "depth" and "dvl" silence those sensors while active; "nav" the AHRS, the DVL and the INS-like
     // estimate (the navigation's own inputs: without a heading it has no estimate either)
     FaultPlan faults;
+    static const ParamTable<Config>& table();  // the AuvSim nodelet's sonar/... and odom/... (the sensors' own beside)
   };
   struct Outputs {
     std::optional<AhrsReading> ahrs;
