@@ -73,19 +73,17 @@ safety::SupervisorConfig readSafety(const std::string& file, safety::SupervisorC
   return preset;
 }
 
-// The Control nodelet's reading of the decision: warn asks nothing, abort surfaces (the USV: neutral), manual wins.
-control::SafetyOverride overrideOf(const safety::Decision& d) {
-  using A = safety::Action;
-  using O = control::SafetyOverride;
-  if (d.manual) return O::kNone;
-  switch (d.action) {
-    case A::kHold: return O::kHold;
-    case A::kNeutral: return O::kNeutral;
-    case A::kSurface:
-    case A::kAbort: return O::kSurface;
-    default: return O::kNone;
-  }
+// The decision reaches control as control::SupervisorAction (control does not depend on safety).
+constexpr bool sameAction(safety::Action a, control::SupervisorAction c) {
+  return static_cast<int>(a) == static_cast<int>(c);
 }
+static_assert(sameAction(safety::Action::kNone, control::SupervisorAction::kNone) &&
+              sameAction(safety::Action::kWarn, control::SupervisorAction::kWarn) &&
+              sameAction(safety::Action::kHold, control::SupervisorAction::kHold) &&
+              sameAction(safety::Action::kNeutral, control::SupervisorAction::kNeutral) &&
+              sameAction(safety::Action::kSurface, control::SupervisorAction::kSurface) &&
+              sameAction(safety::Action::kAbort, control::SupervisorAction::kAbort),
+              "safety::Action must match control::SupervisorAction");
 
 // The supervisor surfaces the vehicle (surface, or abort, which surfaces): the AUV mission ascends as well.
 bool surfaces(const safety::Decision& d) { return !d.manual && d.action >= safety::Action::kSurface; }
@@ -109,7 +107,9 @@ void StackSupervisor::tick(long step, double t, control::ControlLoop& control) {
   safety::SupervisorOutput out = sup_.update(t);
   transitions_.insert(transitions_.end(), out.transitions.begin(), out.transitions.end());
   decision_ = out.decision;
-  control.setSafety(overrideOf(decision_), decision_.active_rule + ": " + decision_.reason);
+  const auto action = static_cast<control::SupervisorAction>(decision_.action);  // as the Control nodelet reads it
+  control.setSafety(control::safetyOverrideOf(action, decision_.manual),
+                    decision_.active_rule + ": " + decision_.reason);
 }
 
 // ------------------------------------------------------------------------------------------------- USV

@@ -67,6 +67,18 @@ const char* safetyOverrideName(SafetyOverride o) {
   return "?";
 }
 
+SafetyOverride safetyOverrideOf(SupervisorAction action, bool manual) {
+  using A = SupervisorAction;
+  if (manual) return SafetyOverride::kNone;
+  switch (action) {
+    case A::kHold: return SafetyOverride::kHold;
+    case A::kNeutral: return SafetyOverride::kNeutral;
+    case A::kSurface:
+    case A::kAbort: return SafetyOverride::kSurface;
+    default: return SafetyOverride::kNone;
+  }
+}
+
 void ControlLoop::setSafety(SafetyOverride o, const std::string& reason) {
   if (o != safety_) have_hold_ = false;  // a new override holds where the vehicle then is
   safety_ = o;

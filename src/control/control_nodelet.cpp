@@ -34,6 +34,14 @@
 
 namespace offshore_gnc {
 
+static_assert(SafetyState::ACTION_NONE == static_cast<int>(control::SupervisorAction::kNone) &&
+              SafetyState::ACTION_WARN == static_cast<int>(control::SupervisorAction::kWarn) &&
+              SafetyState::ACTION_HOLD == static_cast<int>(control::SupervisorAction::kHold) &&
+              SafetyState::ACTION_NEUTRAL == static_cast<int>(control::SupervisorAction::kNeutral) &&
+              SafetyState::ACTION_SURFACE == static_cast<int>(control::SupervisorAction::kSurface) &&
+              SafetyState::ACTION_ABORT == static_cast<int>(control::SupervisorAction::kAbort),
+              "SafetyState.msg's ACTION_* must match control::SupervisorAction");
+
 class ControlNodelet : public nodelet::Nodelet {
   void onInit() override {
     ros::NodeHandle& nh = getNodeHandle();
@@ -166,17 +174,9 @@ class ControlNodelet : public nodelet::Nodelet {
     }
   }
 
-  // The supervisor's action -> what control does: warn asks nothing; abort is a surface (the USV: neutral).
   void onSafety(const SafetyState::ConstPtr& m) {
-    using O = control::SafetyOverride;
-    O o = O::kNone;
-    switch (m->manual ? static_cast<std::uint8_t>(SafetyState::ACTION_NONE) : m->action) {
-      case SafetyState::ACTION_HOLD: o = O::kHold; break;
-      case SafetyState::ACTION_NEUTRAL: o = O::kNeutral; break;
-      case SafetyState::ACTION_SURFACE:
-      case SafetyState::ACTION_ABORT: o = O::kSurface; break;
-      default: break;
-    }
+    const control::SafetyOverride o =
+        control::safetyOverrideOf(static_cast<control::SupervisorAction>(m->action), m->manual);
     std::lock_guard<std::mutex> l(mutex_);
     if (o != loop_->safety())
       NODELET_WARN("safety override %s: %s", control::safetyOverrideName(o), m->reason.c_str());

@@ -43,11 +43,18 @@ struct ActuatorCommand {
   bool active = false;  // false: the neutral command (why() says why)
 };
 
-// What the vehicle's safety supervisor asks of control (safety module's actions, mapped by the Control nodelet;
-// warn asks nothing): hold the position (and depth) where the override began, neutral actuators, or surface
-// (the AUV holds its horizontal position at depth 0; the USV goes neutral). It wins over guidance until cleared.
+// What the vehicle's safety supervisor asks of control (the supervisor's action, by safetyOverrideOf; warn asks
+// nothing): hold the position (and depth) where the override began, neutral actuators, or surface (the AUV holds
+// its horizontal position at depth 0; the USV goes neutral). It wins over guidance until cleared.
 enum class SafetyOverride : std::uint8_t { kNone, kHold, kNeutral, kSurface };
 const char* safetyOverrideName(SafetyOverride o);
+
+// The safety supervisor's action as control reads it: the values of safety::Action and SafetyState.msg's ACTION_*
+// (control does not depend on safety; each caller converts and asserts the values match where it does).
+enum class SupervisorAction : std::uint8_t { kNone, kWarn, kHold, kNeutral, kSurface, kAbort };
+// The supervisor's decision -> the override, for the Control nodelet and the ROS-free stacks alike: manual control
+// wins (none), warn asks nothing, abort surfaces like surface; an unknown action asks nothing.
+SafetyOverride safetyOverrideOf(SupervisorAction action, bool manual);
 
 class ControlLoop {
  public:

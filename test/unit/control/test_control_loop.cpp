@@ -128,3 +128,18 @@ TEST(ControlLoop, SafetySurfaceBringsTheAuvUpWhereItIsAndHoldHoldsItsDepth) {
   EXPECT_NEAR(hold.thrusters.tau(2), 0.0, 1e-9);
   EXPECT_NEAR(hold.thrusters.tau(0), 0.0, 1e-9);  // no surge although guidance asks 0.3 m/s
 }
+
+// The one reading of the supervisor's decision (the Control nodelet's and the ROS-free stacks').
+TEST(ControlLoop, SafetyOverrideOfTheSupervisorsAction) {
+  using A = SupervisorAction;
+  using O = SafetyOverride;
+  EXPECT_EQ(safetyOverrideOf(A::kNone, false), O::kNone);
+  EXPECT_EQ(safetyOverrideOf(A::kWarn, false), O::kNone);
+  EXPECT_EQ(safetyOverrideOf(A::kHold, false), O::kHold);
+  EXPECT_EQ(safetyOverrideOf(A::kNeutral, false), O::kNeutral);
+  EXPECT_EQ(safetyOverrideOf(A::kSurface, false), O::kSurface);
+  EXPECT_EQ(safetyOverrideOf(A::kAbort, false), O::kSurface);
+  EXPECT_EQ(safetyOverrideOf(static_cast<A>(17), false), O::kNone);  // an unknown action asks nothing
+  for (A a : {A::kNone, A::kWarn, A::kHold, A::kNeutral, A::kSurface, A::kAbort})
+    EXPECT_EQ(safetyOverrideOf(a, true), O::kNone);  // manual control wins
+}
