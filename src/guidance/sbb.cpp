@@ -207,7 +207,10 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
             if (std::abs(q.x()) < h && q.y() - h < std::max(0.0, e_to) && q.y() + h > std::min(0.0, e_to)) return true;
           }
         }
-        const std::array<Eigen::Vector2d, 4> way{out.path.back().head<2>(), f.toNed(std::max(r.s_lo, 0.0), e_to),
+        // the way to the first box starts where the vehicle is (LOS resumes on the nearest leg: a USV already
+        // at one side's corner, the other side's way from the path's start passed the AUV clear, its own did not)
+        const Eigen::Vector2d from = out.path.size() == 1 ? vehicle : Eigen::Vector2d(out.path.back().head<2>());
+        const std::array<Eigen::Vector2d, 4> way{from, f.toNed(std::max(r.s_lo, 0.0), e_to),
                                                  f.toNed(std::min(r.s_hi, len), e_to), path[k].head<2>()};
         for (const auto& o : all) {
           if (o.boxed) continue;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/geometry.h"
 #include "offshore_gnc/guidance/paths.h"
 #include "offshore_gnc/guidance/sbb.h"
 
@@ -31,6 +32,13 @@ SbbParams params() {
   return p;
 }
 constexpr std::uint32_t kUnboxedId = 99;
+// The least distance of a path's legs from a point.
+double leastDistance(const std::vector<V3>& path, const V2& p) {
+  double least = 1e9;
+  for (std::size_t i = 1; i < path.size(); ++i)
+    least = std::min(least, segmentDistance(path[i - 1].head<2>(), path[i].head<2>(), p));
+  return least;
+}
 bool insideAny(const V2& w, const std::vector<SbbBox>& boxes) {
   for (const auto& b : boxes)
     if (b.contains(w, 1e-6)) return true;
@@ -194,13 +202,7 @@ TEST(Sbb, NoRunAbeamThroughAnObstacleWhenAlreadyAlongsideItsBox) {
   // starboard (10.75 m against 12), lies beyond the AUV
   ASSERT_EQ(plan.boxes.size(), 1u);
   EXPECT_EQ(plan.boxes[0].side, SbbSide::kPort);
-  double least = 1e9;
-  for (std::size_t i = 1; i < plan.path.size(); ++i) {
-    const V2 a = plan.path[i - 1].head<2>(), b = plan.path[i].head<2>();
-    const double k = std::clamp((auv.origin - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    least = std::min(least, (a + k * (b - a) - auv.origin).norm());
-  }
-  EXPECT_GT(least, 0.75 + p.corridor);
+  EXPECT_GT(leastDistance(plan.path, auv.origin), 0.75 + p.corridor);
 }
 
 // The same merged box across the path's 10 m legs: every leg passes it on the side the first took. Chosen leg by
@@ -215,14 +217,7 @@ TEST(Sbb, OneSideForAMergedBoxAcrossSeveralLegs) {
   for (const auto& b : plan.boxes) EXPECT_EQ(b.side, SbbSide::kPort);
   for (std::size_t i = 0; i < plan.path.size(); ++i)
     if (plan.detour[i]) EXPECT_LT(plan.path[i].y(), -6.0) << i;
-  double least = 1e9;
-  for (std::size_t i = 1; i < plan.path.size(); ++i) {
-    const V2 a = plan.path[i - 1].head<2>(), b = plan.path[i].head<2>();
-    if ((b - a).norm() < 1e-9) continue;
-    const double k = std::clamp((auv.origin - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    least = std::min(least, (a + k * (b - a) - auv.origin).norm());
-  }
-  EXPECT_GT(least, 0.75 + p.corridor);
+  EXPECT_GT(leastDistance(plan.path, auv.origin), 0.75 + p.corridor);
 }
 
 // A buoy's box reaching forward past the leg's start from behind the vehicle (its nearer side port), and beside the
@@ -241,14 +236,7 @@ TEST(Sbb, ADetourKeepsOffTheSideOfAnUnboxedObstacle) {
   ASSERT_EQ(plan.boxes.size(), 1u);
   EXPECT_EQ(plan.boxes[0].side, SbbSide::kStarboard);
   for (const auto& b : plan.boxes) EXPECT_TRUE(std::find(b.ids.begin(), b.ids.end(), kUnboxedId) == b.ids.end());
-  double least = 1e9;
-  for (std::size_t i = 1; i < plan.path.size(); ++i) {
-    const V2 a = plan.path[i - 1].head<2>(), b = plan.path[i].head<2>();
-    if ((b - a).norm() < 1e-9) continue;
-    const double k = std::clamp((auv.origin - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    least = std::min(least, (a + k * (b - a) - auv.origin).norm());
-  }
-  EXPECT_GT(least, 0.75 + p.safety_y);
+  EXPECT_GT(leastDistance(plan.path, auv.origin), 0.75 + p.safety_y);
   // alone, an unboxed obstacle changes nothing: it is no box to plan round
   const SbbPlan on_line = planSbb(path, V2(0, 0), {auv}, p);
   EXPECT_FALSE(on_line.modified);
