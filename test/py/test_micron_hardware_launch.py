@@ -133,7 +133,7 @@ def test_without_a_site_nothing_starts_and_the_launch_says_how_to_set_one(ms, so
     """On hardware the origin comes from the operation (site:=FILE or origin:=LAT,LON[,ALT]), never from a default
     that would put the vehicle in Finland."""
     p = launch(ms, "g500_nosite", vehicle_model="girona500", sonar_port=sonar_tty, startup_timeout=STARTUP, site=None)
-    assert_fails_naming(ms, p, "g500_nosite", "no site origin", "origin:=LAT,LON[,ALT]", "REQUIRED process [world_frames")
+    assert_fails_naming(ms, p, "g500_nosite", "no site origin", "origin:=LAT,LON[,ALT]", "REQUIRED process [")
 
 
 def test_girona500_without_the_sonar_fails_naming_it(ms):

@@ -35,9 +35,10 @@ struct SbbParams {
   double approach = 0.0;      // original waypoints closer than this to a detour corner are dropped, so a vehicle
                               // with a large turning circle gets a gentle run-in and run-out (0 = thesis) [m]
   double hold_clearance = 3.0; // a hold point keeps this clear of an obstacle's extent (0: no check) [m]
-  double keep_side = 6.0;     // a side chosen before is kept while the other is not this much nearer: a kept
-                              // side round a box that then merged with a vessel's led 25 m round it, past the
-                              // vessel, with the other side 9 m nearer (tuning seed 31 run 286) [m]
+  double keep_side = 1e4;     // a side chosen before is kept while the other is not this much nearer (1e4:
+                              // always). 6 m fixed tuning seed 31 run 286 (a kept side round a box that then merged
+                              // with a vessel's led 25 m round it, past the vessel), but with extent_hold it put the
+                              // hull on the AUV in pyhajarvi_map.yaml's recovery: shipped off [m]
   static const ParamTable<SbbParams>& table();
   void validate() const;
 };

@@ -306,6 +306,7 @@ TEST(ObstacleMemory, KeepsWhatTheSensorCannotSeeAndDropsWhatItLooksAtAndMisses) 
 // extent_hold, then takes what it is seen as.
 TEST(ObstacleMemory, ATargetKeepsItsLargestRecentExtent) {
   ObstacleMemoryParams p;
+  p.extent_hold = 10.0;
   ObstacleMemory m(p);
   const Eigen::Vector2d here(0, 0);
   SbbObstacle vessel = buoy(20, 0);

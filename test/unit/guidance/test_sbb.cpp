@@ -110,9 +110,11 @@ TEST(Sbb, ReplanKeepsTheChosenSideWhileTheVehicleDrifts) {
   narrow.max_offset = 5.0;
   EXPECT_EQ(planSbb(path, V2(0.0, 1.2), {buoy(3, 50.0, -3.0)}, narrow, first.boxes).boxes[0].side,
             SbbSide::kStarboard);
-  // ...and one that became far the longer way round (the box merged with another to port: port 15.2 m off,
-  // starboard 5.3) gives way to the nearer, more than keep_side nearer
-  const SbbPlan merged = planSbb(path, V2(0.0, 1.2), {o, buoy(4, 50.0, -8.0)}, p, first.boxes);
+  // ...and, with keep_side set, one that became far the longer way round (the box merged with another to port:
+  // port 15.2 m off, starboard 5.3) gives way to the nearer, more than keep_side nearer
+  SbbParams yielding = p;
+  yielding.keep_side = 6.0;
+  const SbbPlan merged = planSbb(path, V2(0.0, 1.2), {o, buoy(4, 50.0, -8.0)}, yielding, first.boxes);
   ASSERT_FALSE(merged.boxes.empty());
   EXPECT_EQ(merged.boxes[0].side, SbbSide::kStarboard);
   SbbParams sticky = p;
