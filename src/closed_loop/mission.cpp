@@ -89,7 +89,7 @@ UsblFixScores scoreFixes(const std::vector<UsblFixRecord>& fixes, const std::vec
   UsblFixScores s;
   s.received = fixes.size();
   for (const auto& f : fixes) {
-    const std::string verdict = f.quality != usbl::Q_OK ? usbl::qualityName(f.quality) : (f.fused ? "fused" : "gated");
+    const std::string verdict = f.verdict();
     const std::optional<Eigen::Vector3d> p = truthAt(truth, f.t);
     const bool placed = p && f.ned.allFinite();
     const bool outlier = placed && (f.ned - *p).norm() > kUsblOutlierM;

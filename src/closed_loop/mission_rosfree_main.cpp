@@ -28,7 +28,6 @@
 #include "offshore_gnc/closed_loop/mission.h"
 #include "offshore_gnc/common/faults.h"
 #include "offshore_gnc/common/validate.h"
-#include "offshore_gnc/usbl/positioning.h"
 
 using namespace offshore_gnc;
 
@@ -111,8 +110,7 @@ void writeFixes(const std::string& path, const std::vector<closed_loop::UsblFixR
   std::ofstream f(path);
   f << "t,verdict,north,east,down\n";
   for (const auto& x : fixes)
-    f << x.t << "," << (x.quality != usbl::Q_OK ? usbl::qualityName(x.quality) : (x.fused ? "fused" : "gated")) << ","
-      << x.ned.x() << "," << x.ned.y() << "," << x.ned.z() << "\n";
+    f << x.t << "," << x.verdict() << "," << x.ned.x() << "," << x.ned.y() << "," << x.ned.z() << "\n";
 }
 }  // namespace
 

@@ -46,6 +46,8 @@ struct UsblFixRecord {
   std::uint8_t quality = 0;        // usbl::Quality
   Eigen::Vector3d ned = Eigen::Vector3d::Constant(std::nan(""));
   bool fused = false;              // the filter took it (not gated)
+  // a gate's quality name, or "fused" / "gated" by the filter
+  const char* verdict() const { return quality != usbl::Q_OK ? usbl::qualityName(quality) : (fused ? "fused" : "gated"); }
 };
 
 class UsblNavigation {
