@@ -13,13 +13,17 @@ namespace offshore_gnc {
 namespace control {
 
 ThrustAllocator::ThrustAllocator(const Eigen::MatrixXd& tcm, const Eigen::VectorXd& max_thrust,
-                                 CommandFor command_for)
-    : tcm_(tcm), max_(max_thrust), command_for_(std::move(command_for)) {
+                                 CommandFor command_for, const Eigen::VectorXd& max_reverse)
+    : tcm_(tcm), max_(max_thrust), reverse_(max_reverse.size() ? max_reverse : max_thrust),
+      command_for_(std::move(command_for)) {
   if (tcm.size() == 0 || !tcm.allFinite()) throw ConfigError("thruster configuration matrix is empty or non-finite");
-  if (max_thrust.size() != tcm.cols())
-    throw ConfigError("max_thrust has " + std::to_string(max_thrust.size()) + " entries, the TCM has " +
-                      std::to_string(tcm.cols()) + " thrusters");
-  for (int i = 0; i < max_.size(); ++i) requirePositive("max_thrust[" + std::to_string(i) + "]", max_[i]);
+  for (const auto& [name, v] : {std::pair<const char*, const Eigen::VectorXd&>{"max_thrust", max_},
+                                std::pair<const char*, const Eigen::VectorXd&>{"max_reverse_thrust", reverse_}}) {
+    if (v.size() != tcm.cols())
+      throw ConfigError(std::string(name) + " has " + std::to_string(v.size()) + " entries, the TCM has " +
+                        std::to_string(tcm.cols()) + " thrusters");
+    for (int i = 0; i < v.size(); ++i) requirePositive(std::string(name) + "[" + std::to_string(i) + "]", v[i]);
+  }
   pinv_ = tcm_.completeOrthogonalDecomposition().pseudoInverse();
   // Groups: thrusters that act on a common degree of freedom, transitively (T and T^+ are block-diagonal over
   // them, so each group's thrusts depend on its own degrees of freedom only).
@@ -52,10 +56,12 @@ AllocationResult ThrustAllocator::allocate(const Eigen::VectorXd& tau) const {
   if (tau.size() == tcm_.rows() && tau.allFinite()) r.thrust = pinv_ * tau;
   const int n = static_cast<int>(r.thrust.size());
   std::vector<double> scale(groups_, 1.0);
-  for (int i = 0; i < n; ++i) scale[group_[i]] = std::max(scale[group_[i]], std::abs(r.thrust[i]) / max_[i]);
+  for (int i = 0; i < n; ++i)
+    scale[group_[i]] = std::max(scale[group_[i]], std::abs(r.thrust[i]) / limit(i, r.thrust[i]));
   for (int i = 0; i < n; ++i) r.thrust[i] /= scale[group_[i]];
   r.saturated = std::any_of(scale.begin(), scale.end(), [](double s) { return s > 1.0 + 1e-12; });
-  r.setpoint = r.thrust.cwiseQuotient(max_);
+  r.setpoint.resize(n);
+  for (int i = 0; i < n; ++i) r.setpoint[i] = r.thrust[i] / limit(i, r.thrust[i]);
   if (command_for_)
     for (int i = 0; i < r.thrust.size(); ++i) r.setpoint[i] = std::clamp(command_for_(i, r.thrust[i]), -1.0, 1.0);
   return r;

@@ -285,9 +285,11 @@ Girona500ControlParams::Girona500ControlParams() {
   const models::AuvParams g = models::AuvParams::girona500();
   tcm = g.tcm();
   max_thrust.resize(g.thrusters.size());
-  for (std::size_t i = 0; i < g.thrusters.size(); ++i) {  // symmetric limit: the weaker direction
-    const auto& t = g.thrusters[i];
-    max_thrust[i] = std::min(std::abs(t.curve_thrust.front()), std::abs(t.curve_thrust.back()));
+  max_reverse_thrust.resize(g.thrusters.size());
+  for (std::size_t i = 0; i < g.thrusters.size(); ++i) {  // each direction its curve's end
+    const auto& c = g.thrusters[i].curve_thrust;
+    max_thrust[i] = *std::max_element(c.begin(), c.end());
+    max_reverse_thrust[i] = -*std::min_element(c.begin(), c.end());
   }
   model = std::make_shared<const models::AuvModel>(g);
   command_for = [m = model](int i, double f) { return m->commandFor(i, f); };
@@ -310,6 +312,10 @@ const ParamTable<Girona500ControlParams>& Girona500ControlParams::table() {
       .number("hold_ki", &P::hold_ki, 0.0, 1000.0, "N/(m s)",
               "holding a point: integral gain on the horizontal position error, beside the north/east PIDs (0 = off)")
       .number("hold_i_limit", &P::hold_i_limit, 0.0, 1000.0, "N", "bound on the hold integral's force")
+      .flag("hold_face", &P::hold_face,
+            "holding, a demand astern beyond what the thrusters back with turns the bow into it (they push harder ahead)")
+      .number("hold_face_tf", &P::hold_face_tf, 0.0, 1000.0, "s",
+              "low-pass time constant of the demand hold_face reads (the waves' push averaged out)")
       .number("crab_tf", &P::crab_tf, 0.0, 100.0, "s", "low-pass time constant of the force demand the crab follows")
       .number("crab_force", &P::crab_force, 1.0, 1000.0, "N",
               "sideways part of the force demand left to the sway thruster before the bow turns");
@@ -320,6 +326,8 @@ void Girona500ControlParams::validate() const {
   table().validate(*this);
   requireRange("dt", dt, 1e-3, 10.0);
   if (tcm.rows() != 4) throw ConfigError("parameter 'tcm' must have 4 rows (X, Y, Z, N)");
+  if (max_reverse_thrust.size() != max_thrust.size())
+    throw ConfigError("parameter 'max_reverse_thrust' must have as many entries as 'max_thrust'");
 }
 
 namespace {
@@ -332,6 +340,7 @@ ThrusterLayout ThrusterLayout::of(const Girona500ControlParams& c) {
   const RowMajor tcm = c.tcm;
   l.tcm.assign(tcm.data(), tcm.data() + tcm.size());
   l.max_thrust.assign(c.max_thrust.data(), c.max_thrust.data() + c.max_thrust.size());
+  l.max_reverse_thrust.assign(c.max_reverse_thrust.data(), c.max_reverse_thrust.data() + c.max_reverse_thrust.size());
   return l;
 }
 
@@ -341,7 +350,9 @@ const ParamTable<ThrusterLayout>& ThrusterLayout::table() {
       .integer("thrusters", &P::thrusters, 1, 16, "thrusters of the layout")
       .numbers("tcm", &P::tcm, 0, -100.0, 100.0, "",
                "thruster configuration matrix row after row: X, Y, Z, N of `thrusters` values each")
-      .numbers("max_thrust", &P::max_thrust, 0, 1e-3, 1e6, "N", "each thruster's largest thrust");
+      .numbers("max_thrust", &P::max_thrust, 0, 1e-3, 1e6, "N", "each thruster's largest positive thrust")
+      .numbers("max_reverse_thrust", &P::max_reverse_thrust, 0, 1e-3, 1e6, "N",
+               "each thruster's largest negative thrust, its size (empty: max_thrust's)");
   return t;
 }
 
@@ -354,15 +365,22 @@ void ThrusterLayout::applyTo(Girona500ControlParams& c) const {
   const auto n = static_cast<std::size_t>(thrusters);
   need("tcm", tcm, 4 * n);
   need("max_thrust", max_thrust, n);
+  const std::vector<double>& reverse = max_reverse_thrust.empty() ? max_thrust : max_reverse_thrust;
+  need("max_reverse_thrust", reverse, n);
   c.tcm = Eigen::Map<const RowMajor>(tcm.data(), 4, thrusters);
   c.max_thrust = Eigen::Map<const Eigen::VectorXd>(max_thrust.data(), thrusters);
+  c.max_reverse_thrust = Eigen::Map<const Eigen::VectorXd>(reverse.data(), thrusters);
 }
 
 Girona500Controller::Girona500Controller(const Girona500ControlParams& p) { setParams(p); }
 
 void Girona500Controller::setParams(const Girona500ControlParams& p) {
   p.validate();
-  alloc_ = ThrustAllocator(p.tcm, p.max_thrust, p.command_for);
+  alloc_ = ThrustAllocator(p.tcm, p.max_thrust, p.command_for, p.max_reverse_thrust);
+  // astern (-X): each thruster pushing its X component's way round at its limit that way
+  backing_ = 0.0;
+  for (int i = 0; i < p.tcm.cols(); ++i)
+    backing_ += std::abs(p.tcm(0, i)) * (p.tcm(0, i) < 0.0 ? p.max_thrust[i] : p.max_reverse_thrust[i]);
   p_ = p;
   n_.setGains(p.north);
   e_.setGains(p.east);
@@ -389,6 +407,8 @@ Girona500Out Girona500Controller::command(const VehicleState& s, const MotionRef
     hold_i_.setZero();
     force_lp_.setZero();
     crab_ = 0.0;
+    facing_ = false;
+    steady_lp_.setZero();
     out.alloc = alloc_.allocate(Eigen::Vector4d::Zero());
     return out;
   }
@@ -434,10 +454,13 @@ void Girona500Controller::updateCrab(const MotionReference& r, const Eigen::Vect
   if (r.mode != ReferenceMode::kFollow && r.mode != ReferenceMode::kHold) {
     force_lp_.setZero();
     crab_ = 0.0;
+    facing_ = false;
+    steady_lp_.setZero();
     return;
   }
   // the demand is followed in both modes: a hold that passes through a moment of following keeps what it learnt
   force_lp_ += (p_.dt / (p_.crab_tf + p_.dt)) * (f_ned - force_lp_);
+  steady_lp_ += (p_.dt / (p_.hold_face_tf + p_.dt)) * (f_ned - steady_lp_);
   // The bow turns from guidance's heading (which already turns toward the leg) toward the demand, only as far as
   // needed to leave the sway thruster at most crab_force of it. A demand astern (a following current, a hold
   // pushed back) turns the stern toward it, as a demand ahead turns the bow: the surge thrusters, backing, take
@@ -450,6 +473,13 @@ void Girona500Controller::updateCrab(const MotionReference& r, const Eigen::Vect
   };
   const double bow = std::atan2(force_lp_.dot(v), force_lp_.dot(u));  // the demand's angle off guidance's heading
   const double stern = wrapAngle(bow + M_PI);
+  // a demand astern the thrusters cannot back against: bow on to it, whatever the crab's bound (see hold_face)
+  const double astern = -steady_lp_.dot(u);
+  facing_ = r.mode == ReferenceMode::kHold && p_.hold_face && astern > (facing_ ? 0.5 : 1.0) * backing_;
+  if (facing_) {
+    crab_ = bow;
+    return;
+  }
   const bool ahead = std::abs(bow) <= std::abs(stern) + 1e-9;  // exactly abeam: the bow
   const double nearer = ahead ? bow : stern, other = ahead ? stern : bow;
   // The nearer of the two, unless the vehicle already faces the other way and it is within kCrabHysteresis of

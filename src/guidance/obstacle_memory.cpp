@@ -19,6 +19,8 @@ const ParamTable<ObstacleMemoryParams>& ObstacleMemoryParams::table() {
               "a target this close to a kept obstacle's extent is that obstacle seen again")
       .number("extent_hold", &P::extent_hold, 0.0, 3600.0, "s",
               "an obstacle seen again keeps the largest extent it had over this long (0: each frame's own)")
+      .number("clear_time", &P::clear_time, 0.0, 3600.0, "s",
+              "an obstacle in the sensor's view but not in its frames is dropped after missing this long (0: at once)")
       .number("sensor_ahead", &P::sensor_ahead, -100.0, 100.0, "m",
               "the obstacle sensor (LiDAR) ahead of the reference point")
       .degrees("sensor_aperture_deg", &P::sensor_aperture, 0.0, 360.0,
@@ -51,7 +53,7 @@ void ObstacleMemory::update(const std::vector<SbbObstacle>& seen, const Eigen::V
   auto reach = [](const SbbObstacle& o) { return 0.5 * std::max(o.length, o.width); };
   std::vector<Kept> next;
   next.reserve(seen.size() + kept_.size());
-  for (const auto& s : seen) next.push_back({s, t, 1, 2.0 * reach(s), t});
+  for (const auto& s : seen) next.push_back({s, t, 1, 2.0 * reach(s), t, -1.0});
   remembered_ = 0;
   for (auto& k : kept_) {
     // seen again: the frame's targets stand for it, and inherit its count (a cluster that splits or merges
@@ -67,8 +69,13 @@ void ObstacleMemory::update(const std::vector<SbbObstacle>& seen, const Eigen::V
         again = true;
       }
     if (again) continue;
-    // not in this frame: gone if the sensor looked there, else kept a while if it was there for certain
-    if (inView(k.o.origin, position, yaw) || k.frames < p_.confirm_frames || t - k.seen_t > p_.memory) continue;
+    // not in this frame: kept a while if it was there for certain, and then, if the sensor looks there, only until
+    // it has been missed for clear_time (a low buoy flickers in and out of the lowest layer as the boat pitches)
+    if (k.frames < p_.confirm_frames || t - k.seen_t > p_.memory) continue;
+    if (inView(k.o.origin, position, yaw)) {
+      if (k.missed_t < 0.0) k.missed_t = t;
+      if (t - k.missed_t >= p_.clear_time) continue;
+    }
     ++remembered_;
     next.push_back(k);
   }

@@ -170,10 +170,18 @@ struct Girona500ControlParams {
   // (docs/campaign.md, 2026-12-05): 0 12 of 24, 5 13, 15 14; auv_adrift 3, 1, 1.
   double hold_ki = 15.0;         // [N/(m s)]
   double hold_i_limit = 200.0;   // bound on the integral's force [N]
+  // Holding, a demand astern (relative to guidance's heading) beyond what the thrusters can back with turns the bow
+  // into it, past hold_crab: the surge propellers push 103 N ahead against 80 N astern, and a surfaced Girona500
+  // backing against 0.48 m/s and a 7.5 m/s wind went 290 m downstream (tuning seed 32 run 28). Back to guidance's
+  // heading once the demand is under half that. The demand read is low-passed over hold_face_tf: in a 1 m sea the
+  // waves' push, on crab_tf's 5 s, crossed the threshold both ways and spun the surfaced vehicle beside the USV.
+  bool hold_face = true;
+  double hold_face_tf = 30.0;    // [s]
   double crab_tf = 5.0;          // low-pass time constant of the force demand [s]
   double crab_force = 40.0;      // the lateral thruster's limit: the bow turns once it is not enough [N]
   Eigen::MatrixXd tcm;           // 4 x n (surge, sway, heave, yaw); default: models::AuvParams::girona500().tcm()
-  Eigen::VectorXd max_thrust;    // default: the smaller of each thruster's forward / reverse maximum [N]
+  Eigen::VectorXd max_thrust;    // each thruster's largest positive thrust; default: its curve's [N]
+  Eigen::VectorXd max_reverse_thrust;  // and its largest negative thrust's size; default: its curve's [N]
   ThrustAllocator::CommandFor command_for;  // default: the models' inverse thruster curves
   std::shared_ptr<const models::AuvModel> model;  // whose speed through the water the thrust predicts; Girona500
   double dt = 0.1;
@@ -183,11 +191,12 @@ struct Girona500ControlParams {
 };
 
 // The Control nodelet's override of the Girona500's allocation (another thruster layout, config/control/
-// girona500.yaml): `tcm` row after row (X, Y, Z, N of `thrusters` values each) and `max_thrust` [N]. Defaults:
-// the controller's (the model's layout); with another thruster count both must be given.
+// girona500.yaml): `tcm` row after row (X, Y, Z, N of `thrusters` values each), `max_thrust` and
+// `max_reverse_thrust` [N] (empty: max_thrust's). Defaults: the controller's (the model's layout); with another
+// thruster count tcm and max_thrust must be given.
 struct ThrusterLayout {
   int thrusters = 0;
-  std::vector<double> tcm, max_thrust;
+  std::vector<double> tcm, max_thrust, max_reverse_thrust;
   static ThrusterLayout of(const Girona500ControlParams& c);
   static const ParamTable<ThrusterLayout>& table();
   void applyTo(Girona500ControlParams& c) const;  // throws ConfigError naming a list that does not fit `thrusters`
@@ -219,6 +228,9 @@ class Girona500Controller {
   Eigen::Vector2d hold_i_ = Eigen::Vector2d::Zero();  // the hold's integral of the NED error [m s]
   Eigen::Vector2d force_lp_ = Eigen::Vector2d::Zero();  // low-passed NED force demand (crab)
   double crab_ = 0.0;  // heading offset from guidance's heading [rad]
+  double backing_ = 0.0;  // the largest force astern the allocation gives (hold_face) [N]
+  Eigen::Vector2d steady_lp_ = Eigen::Vector2d::Zero();  // the demand low-passed over hold_face_tf (NED) [N]
+  bool facing_ = false;   // holding bow on to a demand from astern (hold_face)
   void updateCrab(const MotionReference& r, const Eigen::Vector2d& f_ned, double yaw);
   ThrustAllocator alloc_;
   Counters counters_;

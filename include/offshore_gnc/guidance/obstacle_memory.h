@@ -29,10 +29,17 @@ struct ObstacleMemoryParams {
                                  // back frame by frame, merging its box with the next and splitting it, and the
                                  // detour flipped sides (tuning seed 31 run 286); 10 s helped there, but with
                                  // keep_side put the hull on the AUV in pyhajarvi_map.yaml: shipped off [s]
+  double clear_time = 2.0;       // one in the sensor's view but not in the frame is dropped after missing this long
+                                 // (0: at the first such frame). A low buoy drops out of the lowest layer's frames
+                                 // now and then as the boat pitches; dropped at once, the detour round it went and
+                                 // came back scan by scan (tuning seed 32 run 274: the hull on it) [s]
   double sensor_ahead = 1.5;     // the sensor ahead of the reference point (sim lidar/mount: on the bow) [m]
   double sensor_aperture = deg2rad(275.0);  // its horizontal field of view, centred on the bow (275 deg) [rad]
-  double sensor_near = 8.0;      // nearer than this to the sensor a low object passes under its lowest layer or
-                                 // lies in its hull box (perception hull_box): not seen even in the aperture [m]
+  double sensor_near = 12.0;     // nearer than this to the sensor a low object passes under its lowest layer or
+                                 // lies in its hull box (perception hull_box): not seen even in the aperture. The
+                                 // MRS1000's lowest layer, 2.5 deg down from 1 m above the water, passes over a
+                                 // 0.5 m buoy (the envelope's lowest) nearer than 11.4 m; at 8 m such buoys were
+                                 // dropped 8-11 m off and planned through [m]
   static const ParamTable<ObstacleMemoryParams>& table();
   void validate() const;
 };
@@ -56,6 +63,7 @@ class ObstacleMemory {
     int frames = 0;
     double extent = 0.0;    // the largest extent held (extent_hold), and when it was seen
     double extent_t = 0.0;
+    double missed_t = -1.0;  // when it was first missed in the sensor's view (< 0: not missed since last seen)
   };
   bool inView(const Eigen::Vector2d& p, const Eigen::Vector2d& position, double yaw) const;
 

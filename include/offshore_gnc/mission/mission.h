@@ -68,7 +68,8 @@ struct AuvMissionParams {
   // 0.32 m/s and 7 m/s of wind: the hull touched it at 323 s). [m]
   double overhead_clearance = 6.0;
   double station_radius = 1.0;       // on station (and, at the surface, stationary) this close to its point [m]
-  // At the surface also stationary when its position stayed within station_radius of their mean this long, on GPS
+  // At the surface also stationary when its position stayed within station_radius of their mean this long, and moved
+  // less than that from the window's first to its last, on GPS
   // fixes (the latest within it), wherever it holds: a Girona500 pushed 1-6 m off its point by wind and current and
   // steady there left the USV waiting at the run-in to the time limit (evaluation seed 7000, 2026-12-05: 31 of its
   // 40 auv_adrift). Not on the USBL alone: an aColor's USBL estimate can be steady but off (2026-12-04). [s]

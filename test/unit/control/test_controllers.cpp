@@ -1,9 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/control/vehicle_control.h"
 #include "offshore_gnc/models/auv.h"
 
@@ -24,7 +27,7 @@ MotionReference follow(double heading, double surge = 1.0, double depth = 2.0) {
 
 TEST(Allocation, SetpointsThroughTheModelsInverseCurveGiveTheAllocatedThrust) {
   const Girona500ControlParams p;
-  ThrustAllocator a(p.tcm, p.max_thrust, p.command_for);
+  ThrustAllocator a(p.tcm, p.max_thrust, p.command_for, p.max_reverse_thrust);
   models::AuvModel m(models::AuvParams::girona500());
   const auto r = a.allocate(Eigen::Vector4d(-20.0, 8.0, 15.0, 2.0));
   ASSERT_FALSE(r.saturated);
@@ -281,6 +284,57 @@ TEST(Girona500, HoldingAbeamOfAStrongCurrentPicksOneSideAndStaysThere) {
   }
   EXPECT_LT(yaw_hi - yaw_lo, 0.3);
   EXPECT_LT(worst, 2.0);
+}
+
+// Each direction its own limit: T200-like surge propellers push 51.5 N ahead and 40.2 N astern. A demand ahead past
+// the 40.2 N a symmetric limit allowed gets the propellers' full ahead thrust, one astern saturates at the
+// weaker limit, and either way the saturated group keeps the wrench's direction.
+TEST(Allocation, EachDirectionSaturatesAtItsOwnLimit) {
+  const Girona500ControlParams p;
+  const ThrustAllocator a(p.tcm, p.max_thrust, p.command_for, p.max_reverse_thrust);
+  const auto ahead = a.allocate(Eigen::Vector4d(500.0, 0.0, 0.0, 10.0));
+  const auto astern = a.allocate(Eigen::Vector4d(-500.0, 0.0, 0.0, 10.0));
+  ASSERT_TRUE(ahead.saturated && astern.saturated);
+  const Eigen::Vector4d got_ahead = a.tcm() * ahead.thrust, got_astern = a.tcm() * astern.thrust;
+  EXPECT_GT(got_ahead[0], 2 * 40.2 * 0.9);  // beyond the symmetric limit's 80 N (less the yaw's share)
+  EXPECT_LT(got_ahead[0], 2 * 51.5 + 1e-6);
+  EXPECT_GT(got_astern[0], -2 * 40.2 - 1e-6);
+  EXPECT_NEAR(got_ahead[3] / got_ahead[0], 10.0 / 500.0, 1e-9);  // the direction kept
+  EXPECT_NEAR(got_astern[3] / got_astern[0], 10.0 / -500.0, 1e-9);
+  for (int i = 0; i < ahead.setpoint.size(); ++i) {
+    EXPECT_LE(std::abs(ahead.setpoint[i]), 1.0 + 1e-9);
+    EXPECT_LE(std::abs(astern.setpoint[i]), 1.0 + 1e-9);
+  }
+  EXPECT_THROW(ThrustAllocator(p.tcm, p.max_thrust, {}, Eigen::VectorXd::Constant(2, 40.0)), ConfigError);
+}
+
+TEST(Girona500, HoldingAgainstAStrongDemandFromAsternTurnsTheBowIntoIt) {
+  // 0.6 m/s from dead astern of guidance's heading (north, the current setting north): 91 N of drag (X_u u +
+  // X_uu u^2), more than the propellers back with (80 N: 0.56 m/s), less than they push ahead (103 N: 0.64 m/s).
+  // Facing it (hold_face) the vehicle holds its point; backing (off) it is carried downstream.
+  models::EnvironmentParams ep;
+  ep.current_north = 0.6;
+  const models::Environment env(ep);
+  auto run = [&](bool face) {
+    Girona500ControlParams p;
+    p.hold_face = face;
+    Girona500Controller g(p);
+    models::AuvModel m(models::AuvParams::girona500());
+    VehicleState s0;
+    s0.position = Eigen::Vector3d(0, 0, 2);
+    m.reset(s0);
+    double worst = 0.0;
+    for (int k = 0; k < 6000; ++k) {  // 600 s at 10 Hz
+      EXPECT_TRUE(m.setCommand(g.update(m.state(), holdAt(0, 0, 0.0)).alloc.setpoint));
+      for (int i = 0; i < 10; ++i) m.step(0.01, env);
+      if (k >= 3000) worst = std::max(worst, m.state().position.head<2>().norm());
+    }
+    return std::make_pair(worst, m.state().yaw);
+  };
+  const auto faced = run(true), backed = run(false);
+  EXPECT_LT(faced.first, 2.0);
+  EXPECT_GT(std::abs(faced.second), 2.8);  // bow south, into the current
+  EXPECT_GT(backed.first, 10.0);
 }
 
 TEST(Girona500, HoldingIntegratesTheStandingErrorAwayWithinItsBound) {

@@ -202,7 +202,8 @@ TEST(GuidancePipeline, BadInputIsRefusedWithAReason) {
 
 TEST(GuidancePipeline, AHoldPointTooCloseToAnObstacleIsRefusedAndAClearOneHeld) {
   GuidanceParams p = GuidanceParams::preset("usv");
-  p.obstacles.sensor_near = 0.0;  // a sensor that sees right up to its bow: a buoy it misses there is gone
+  p.obstacles.sensor_near = 0.0;  // a sensor that sees right up to its bow: a buoy it misses there is gone,
+  p.obstacles.clear_time = 0.0;   // at its first miss
   GuidancePipeline g(p);
   g.setState(at(-10, 0), 0.0);
   g.setPath({{-12, 0, 0}, {-10, 0, 0}});  // a hold (the mission's lead-in to its station at N -10)
@@ -272,7 +273,8 @@ TEST(SafeHoldPoint, AMovedHoldStaysOnItsSideWhenTheBoxTakesItIn) {
 // alongside is still planned round (and a hold kept clear of it), while one the sensor looks at and does not see is
 // gone at once; a target seen once (spray) is not remembered; after obstacle_memory it is forgotten.
 TEST(ObstacleMemory, KeepsWhatTheSensorCannotSeeAndDropsWhatItLooksAtAndMisses) {
-  ObstacleMemoryParams p;  // the USV's: 275 degrees from 1.5 m ahead, blind nearer than 8 m
+  ObstacleMemoryParams p;  // the USV's: 275 degrees from 1.5 m ahead, blind nearer than 12 m
+  p.clear_time = 0.0;      // dropped at the first miss in view (clear_time: the next test)
   ObstacleMemory m(p);
   const Eigen::Vector2d here(0, 0);
   for (int i = 0; i < 5; ++i) m.update({buoy(20, 0)}, here, 0.0, 0.1 * i);  // ahead, 5 frames
@@ -300,6 +302,30 @@ TEST(ObstacleMemory, KeepsWhatTheSensorCannotSeeAndDropsWhatItLooksAtAndMisses) 
   EXPECT_EQ(m.active(501.0).size(), 1u);
   // no frame for obstacle_timeout (the sensor is gone): nothing is planned round
   EXPECT_TRUE(m.active(501.0 + p.timeout + 0.1).empty());
+}
+
+// A low buoy drops out of the lowest layer's frames now and then as the boat pitches, in full view: with
+// clear_time it is dropped only when missed that long, and seen again in between it starts over.
+TEST(ObstacleMemory, AnObstacleInViewIsDroppedOnlyWhenMissedForClearTime) {
+  ObstacleMemoryParams p;
+  p.clear_time = 2.0;
+  ObstacleMemory m(p);
+  const Eigen::Vector2d here(0, 0);
+  for (int i = 0; i < 5; ++i) m.update({buoy(20, 0)}, here, 0.0, 0.1 * i);  // ahead, 5 frames: confirmed
+  m.update({}, here, 0.0, 1.0);                                            // missed, in view
+  EXPECT_EQ(m.active(1.0).size(), 1u);
+  m.update({}, here, 0.0, 2.9);
+  EXPECT_EQ(m.active(2.9).size(), 1u);
+  m.update({buoy(20, 0)}, here, 0.0, 3.0);  // seen again: the misses start over
+  m.update({}, here, 0.0, 4.0);
+  m.update({}, here, 0.0, 5.9);
+  EXPECT_EQ(m.active(5.9).size(), 1u);
+  m.update({}, here, 0.0, 6.0);  // missed in view for 2 s: gone
+  EXPECT_TRUE(m.active(6.0).empty());
+  // a target seen once (spray) is dropped at its first miss all the same
+  m.update({buoy(30, 0)}, here, 0.0, 7.0);
+  m.update({}, here, 0.0, 7.1);
+  EXPECT_TRUE(m.active(7.1).empty());
 }
 
 // A vessel's cluster shrinks to the edge the LiDAR sees for a few frames: it keeps its largest extent for

@@ -450,6 +450,15 @@ TEST(AuvMission, AtTheSurfaceSteadyOffItsPointOnGpsIsStationaryAndADrifterIsNot)
     m.onPose(off - Eigen::Vector3d(0.2 * s, 0.0, 0.0), 0.0, t + s);
   }
   EXPECT_FALSE(m.stationary());
+  // creeping at 0.07 m/s, 1.4 m in the window: every position within 1 m of their mean, but not stationary (a
+  // Girona500 that could not quite hold came down onto the USV closing in, tuning seed 32 run 262)
+  t += 20.0;
+  const Eigen::Vector3d from = off - Eigen::Vector3d(4.0, 0.0, 0.0);
+  for (double s = 0.5; s <= 40.0; s += 0.5) {
+    m.onSurfaceFix(t + s);
+    m.onPose(from - Eigen::Vector3d(0.07 * s, 0.0, 0.0), 0.0, t + s);
+  }
+  EXPECT_FALSE(m.stationary());
 }
 
 TEST(AuvMission, HoldsItsDepthWhileTheUsvIsOverIt) {
