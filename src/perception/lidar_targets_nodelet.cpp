@@ -91,6 +91,12 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
   void onCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
     const auto t0 = std::chrono::steady_clock::now();
     ++frames_;
+    const perception::CloudView view = perception_ros::cloudView(*msg);
+    perception::LidarResult bad;
+    if (!extractor_->checkLayout(view, bad)) {
+      NODELET_ERROR_THROTTLE(5.0, "rejected cloud (%s): %s", perception::toString(bad.error), bad.message.c_str());
+      return;
+    }
     Eigen::Isometry3d to_target;
     std::string err;
     if (!perception_ros::lookupPose(*tf_, target_frame_, msg->header.frame_id, msg->header.stamp, tf_timeout_,
@@ -100,8 +106,7 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
                             msg->header.frame_id.c_str(), msg->header.stamp.toSec(), err.c_str());
       return;
     }
-    const perception::LidarResult r =
-        extractor_->extract(perception_ros::cloudView(*msg), levelAt(msg->header.stamp.toSec()));
+    const perception::LidarResult r = extractor_->extract(view, levelAt(msg->header.stamp.toSec()));
     if (r.error != perception::CloudError::None) {
       NODELET_ERROR_THROTTLE(5.0, "rejected cloud (%s): %s", perception::toString(r.error), r.message.c_str());
       return;

@@ -81,6 +81,10 @@ class LidarTargetExtractor {
   // to the levelled frame (levelling()); the range and height band apply there, the hull box in the cloud frame,
   // and the targets come out levelled.
   LidarResult extract(const CloudView& cloud, const Eigen::Matrix3d& level = Eigen::Matrix3d::Identity());
+  // The cloud's layout alone (extract's first step, O(1)): false, with r.error and its counter, for a malformed one.
+  // The nodelet checks it before it waits for the cloud's pose, so a bad cloud is named as such however late the
+  // pose (before, one in ahead of its pose was counted no_transform).
+  bool checkLayout(const CloudView& c, LidarResult& r);
   const Counters& counters() const { return counters_; }
   Counters& counters() { return counters_; }
   const LidarConfig& config() const { return cfg_; }
@@ -99,7 +103,6 @@ class LidarTargetExtractor {
     int streak;
   };
   void confirm(std::vector<TargetGeometry>& raw, const std::vector<Seen>& boxes, LidarResult& r);
-  bool checkLayout(const CloudView& c, LidarResult& r);
   bool closeEnough(const Segment& a, const Segment& b) const;
   std::size_t find(std::size_t i);
 

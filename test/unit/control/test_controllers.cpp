@@ -296,7 +296,9 @@ TEST(Allocation, EachDirectionSaturatesAtItsOwnLimit) {
   const auto astern = a.allocate(Eigen::Vector4d(-500.0, 0.0, 0.0, 10.0));
   ASSERT_TRUE(ahead.saturated && astern.saturated);
   const Eigen::Vector4d got_ahead = a.tcm() * ahead.thrust, got_astern = a.tcm() * astern.thrust;
-  EXPECT_GT(got_ahead[0], 2 * 40.2 * 0.9);  // beyond the symmetric limit's 80 N (less the yaw's share)
+  // with the yaw's share (10 N m over the propellers' 0.49 m) the group saturates at 95 N of surge ahead; the
+  // symmetric 40.2 N limit gave 74 N
+  EXPECT_GT(got_ahead[0], 90.0);
   EXPECT_LT(got_ahead[0], 2 * 51.5 + 1e-6);
   EXPECT_GT(got_astern[0], -2 * 40.2 - 1e-6);
   EXPECT_NEAR(got_ahead[3] / got_ahead[0], 10.0 / 500.0, 1e-9);  // the direction kept
