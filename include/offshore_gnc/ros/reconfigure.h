@@ -12,16 +12,10 @@
 #include <utility>
 
 #include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/common/reconfigure_form.h"
 
 namespace offshore_gnc {
 namespace ros_util {
-
-inline std::string cfgName(const std::string& table_name) {
-  std::string n = table_name;
-  for (auto& c : n)
-    if (c == '/') c = '_';
-  return n;
-}
 
 template <class P>
 const ParamSpec<P>* specForCfg(const ParamTable<P>& t, const std::string& cfg_name) {
