@@ -30,9 +30,7 @@ def _probe(argv):
     if mode == "pub":  # pub TOPIC N RATE
         n, rate = int(argv[2]), float(argv[3])
         pub = rospy.Publisher(topic, String, queue_size=1000)
-        deadline = time.time() + 20
-        while pub.get_num_connections() < 1 and time.time() < deadline:  # the relay's subscriber
-            time.sleep(0.02)
+        wait_until(lambda: pub.get_num_connections() >= 1, 20, step=0.02)  # the relay's subscriber
         r = rospy.Rate(rate)
         for i in range(n):
             pub.publish(String(data=str(i)))

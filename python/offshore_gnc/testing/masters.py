@@ -22,6 +22,8 @@ import time
 
 import yaml
 
+from .poll import wait_until
+
 _LIVE = set()  # every Popen still running, for the atexit / SIGTERM safety net
 
 
@@ -177,12 +179,7 @@ class Master:
         return sorted(t for t, _ in rosgraph.Master("/harness", master_uri=self.uri).getPublishedTopics("/"))
 
     def wait_for_topic(self, topic, timeout=10.0):
-        deadline = time.time() + timeout
-        while time.time() < deadline:
-            if topic in self.topics():
-                return True
-            time.sleep(0.1)
-        return False
+        return wait_until(lambda: topic in self.topics(), timeout)
 
     def set_param(self, name, value):
         import rosgraph
@@ -192,15 +189,13 @@ class Master:
         """True once the parameter exists (e.g. /use_sim_time, set by a launch file), False after timeout."""
         import rosgraph
         m = rosgraph.Master("/harness", master_uri=self.uri)
-        deadline = time.time() + timeout
-        while time.time() < deadline:
+
+        def has():
             try:
-                if m.hasParam(name):
-                    return True
-            except OSError:
-                pass
-            time.sleep(0.1)
-        return False
+                return m.hasParam(name)
+            except OSError:  # the master not up yet
+                return False
+        return bool(wait_until(has, timeout))
 
     def wait_for_message(self, topic, timeout=10.0):
         """First message on topic (dict, from rostopic echo), or raise TimeoutError."""
