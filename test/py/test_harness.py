@@ -5,6 +5,7 @@ import time
 
 import pytest
 
+from offshore_gnc import VEHICLES
 from offshore_gnc.testing import MasterSet, wait_until
 
 
@@ -23,7 +24,7 @@ def _frames(master, lat, lon):
 
 
 def test_two_masters_are_isolated():
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         assert ms["usv"].port != ms["auv"].port
         _frames(ms["usv"], 61.45, 23.72)
         _frames(ms["auv"], 60.10, 24.90)

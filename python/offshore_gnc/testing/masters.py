@@ -3,7 +3,7 @@
 Each vehicle of the co-operative system has its own master (thesis chapter 5), so the integration tests need
 more than the one master rostest gives. Usage:
 
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:  # offshore_gnc.VEHICLES: usv, auv
         ms["usv"].set_param("/site/origin", "61.4507,23.7270")  # the site (launch/site.launch in a launch file)
         ms["usv"].run(["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/WorldFrames"], name="frames")
         msg = ms["usv"].wait_for_message("/origin", timeout=10)
@@ -21,6 +21,8 @@ import tempfile
 import time
 
 import yaml
+
+from offshore_gnc import VEHICLES
 
 from .poll import wait_until
 
@@ -221,7 +223,7 @@ class Master:
 class MasterSet:
     """Context manager: several masters by name; everything torn down on exit, failure or not."""
 
-    def __init__(self, names=("usv", "auv"), log_dir=None, keep_logs_on_failure=True):
+    def __init__(self, names=VEHICLES, log_dir=None, keep_logs_on_failure=True):
         self._own_dir = log_dir is None
         self.log_dir = log_dir or tempfile.mkdtemp(prefix="offshore_gnc_masters_")
         os.makedirs(self.log_dir, exist_ok=True)
