@@ -36,7 +36,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
-from offshore_gnc import report, scenario_check  # noqa: E402
+from offshore_gnc import VEHICLES, report, scenario_check  # noqa: E402
 from offshore_gnc import radio as radio_link  # noqa: E402
 from offshore_gnc.testing import MasterSet  # noqa: E402
 from offshore_gnc.testing.masters import free_port, kill_tree  # noqa: E402
@@ -57,7 +57,7 @@ def relay_configs(folder, speedup):
     import yaml
     files = {}
     port, auv_port = free_port(), free_port()
-    for v in ("usv", "auv"):
+    for v in VEHICLES:
         with open(os.path.join(REPO, "config", "relay", v + ".yaml")) as f:
             c = yaml.safe_load(f)
         if c.get("listen_port"):
@@ -131,8 +131,8 @@ def parse_args(argv=None):
             a.kill = (v, None, float(t[len("found+"):])) if t.startswith("found+") else (v, float(t), None)
         except ValueError:
             ap.error("--kill wants VEHICLE@SIM_S or VEHICLE@found+S, e.g. auv@120, usv@found+12")
-        if v not in ("usv", "auv"):
-            ap.error("--kill: the vehicle is usv or auv")
+        if v not in VEHICLES:
+            ap.error("--kill: the vehicle is one of " + ", ".join(VEHICLES))
     return a
 
 
@@ -360,7 +360,7 @@ def after_death(died, launches, status, watch_s):
     """The outcome once a stack has died, or None while the survivor is still being watched."""
     gone = ", ".join("the %s stack died at sim %.1f s (exit %s)" % (v, t, launches[v].returncode)
                      for v, t in sorted(died.items()))
-    survivors = [v for v in ("usv", "auv") if v not in died]
+    survivors = [v for v in VEHICLES if v not in died]
     if not survivors:
         return {"reason": gone, "died": died}
     s = status[survivors[0]]
@@ -388,7 +388,7 @@ def run(a):
         raise scenario_check.ScenarioError(str(e))
     t0 = time.time()
     outcome = {"reason": "not started"}
-    with MasterSet(["usv", "auv"], log_dir=os.path.join(out, "logs")) as ms:
+    with MasterSet(VEHICLES, log_dir=os.path.join(out, "logs")) as ms:
         lockstep = not a.free_running
         common = {"sim": "true", "scenario": os.path.abspath(a.scenario), "rate": str(a.rate), "record": "true",
                   "lockstep": str(lockstep).lower(), "faults": fault_plan, "seed": str(a.seed)}
@@ -506,7 +506,7 @@ def run(a):
         radio.close()
         # MasterSet's exit stops roslaunch with SIGINT: rosbag closes its bags cleanly.
     wall = time.time() - t0
-    for v in ("usv", "auv"):  # a killed rosbag leaves an unindexed .active file: recover it, lose no data
+    for v in VEHICLES:  # a killed rosbag leaves an unindexed .active file: recover it, lose no data
         bag = os.path.join(out, v + ".bag")
         if not os.path.exists(bag) and os.path.exists(bag + ".active"):
             fixed = os.path.join(out, "reindexed")

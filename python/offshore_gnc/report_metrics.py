@@ -6,7 +6,7 @@ import math
 import os
 import subprocess
 
-from offshore_gnc import tools
+from offshore_gnc import VEHICLES, tools
 from offshore_gnc.report_bags import _at, _interpolate, _interpolate3, _phase_at, _stamp
 
 THESIS = {  # field-test figures for comparison (thesis Table 5.1 USV; Table 4.4 Girona500 AUV)
@@ -285,7 +285,7 @@ def fault_reports(planned, events, transitions, nav_err=(), nav_sigma=(), nav_st
         v, start = f["vehicle"], f["start_s"]
         end = f["end_s"] if f["end_s"] is not None else float("inf")
         if v == "both":  # injected by the job itself (the radio, the phantom target), which noted when
-            on, off, watched = f.get("injected_s"), f.get("ended_s"), ("usv", "auv")
+            on, off, watched = f.get("injected_s"), f.get("ended_s"), VEHICLES
         else:
             ev = events.get(v, [])
             on = next((_stamp(t, m) for t, m in ev if m.name == f["name"] and m.active and _stamp(t, m) >= start - 0.5),

@@ -15,6 +15,17 @@ const ParamTable<ControlLoopParams>& ControlLoopParams::table() {
   return t;
 }
 
+const std::vector<ReconfigureGroup>& ControlLoopParams::reconfigurable() {
+  static const std::vector<ReconfigureGroup> g = [] {
+    ReconfigureGroup pid{"pid", {}};
+    // the USV's surge, every vehicle's yaw, the Girona500's position, the aColor's heave
+    for (const char* axis : {"surge", "yaw", "north", "east", "down", "heave"})
+      for (const char* gain : {"kp", "ki", "kd"}) pid.params.push_back(std::string(axis) + "/" + gain);
+    return std::vector<ReconfigureGroup>{pid, {"usv", {"filter/tf", "filter/xi"}}};
+  }();
+  return g;
+}
+
 void ControlLoopParams::validate() const {
   table().validate(*this);
   if (vehicle == "usv") usv.validate();

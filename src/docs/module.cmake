@@ -1,3 +1,4 @@
-# docs: the reference generated from the code. param_docs prints docs/parameters.md from every module's parameter
-# tables (a test compares the file with its output), so it stands above every module whose tables it prints.
+# docs: what is generated from the code. param_docs prints docs/parameters.md from every module's parameter
+# tables and, with --cfg, the dynamic_reconfigure scripts cfg/*.cfg (the core here writes them; tests compare the
+# checked-in files with its output), so it stands above every module whose tables it prints.
 offshore_gnc_tool(param_docs SOURCES src/docs/param_docs_main.cpp)

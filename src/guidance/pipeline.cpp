@@ -82,6 +82,15 @@ const ParamTable<GuidanceParams>& GuidanceParams::table() {
   return t;
 }
 
+const std::vector<ReconfigureGroup>& GuidanceParams::reconfigurable() {
+  static const std::vector<ReconfigureGroup> g = {
+      {"los", {"los/kp", "los/ki", "los/integral_limit", "los/adaptive_crab", "los/crab_gain", "los/crab_limit",
+               "los/acceptance_radius", "los/surge_speed", "los/final_radius", "los/detour_radius",
+               "los/approach_distance", "los/approach_speed"}},
+      {"sbb", {"sbb/safety_x", "sbb/safety_y", "sbb/corridor", "sbb/max_offset"}}};
+  return g;
+}
+
 void GuidanceParams::validate() const { table().validate(*this); }
 
 GuidancePipeline::GuidancePipeline(const GuidanceParams& p) : p_(p), los_(p.los), seen_(p.obstacles) { p_.validate(); }

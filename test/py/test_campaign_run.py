@@ -8,13 +8,13 @@ import shutil
 import signal
 import subprocess
 import sys
-import time
 
 import pytest
 
 from offshore_gnc import tools
 from offshore_gnc.campaign import runs
 from offshore_gnc.testing.masters import descendants, free_port, kill_tree
+from offshore_gnc.testing.poll import wait_until
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SMOKE = os.path.join(REPO, "config", "campaigns", "smoke.yaml")
@@ -37,10 +37,7 @@ def last_json(text):
 
 
 def wait_for(what, condition, timeout=TIMEOUT_S):
-    t0 = time.monotonic()
-    while not condition():
-        assert time.monotonic() - t0 < timeout, "gave up waiting for " + what
-        time.sleep(0.2)
+    assert wait_until(condition, timeout, step=0.2), "gave up waiting for " + what
 
 
 @pytest.fixture(scope="module")

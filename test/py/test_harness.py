@@ -5,7 +5,8 @@ import time
 
 import pytest
 
-from offshore_gnc.testing import MasterSet
+from offshore_gnc import VEHICLES
+from offshore_gnc.testing import MasterSet, wait_until
 
 
 def _port_free(port):
@@ -23,7 +24,7 @@ def _frames(master, lat, lon):
 
 
 def test_two_masters_are_isolated():
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         assert ms["usv"].port != ms["auv"].port
         _frames(ms["usv"], 61.45, 23.72)
         _frames(ms["auv"], 60.10, 24.90)
@@ -50,10 +51,7 @@ def test_teardown_even_when_the_body_fails():
             raise RuntimeError("deliberate failure inside the test body")
     for p in procs:
         assert p.poll() is not None, "process survived teardown"
-    deadline = time.time() + 5
-    while time.time() < deadline and not all(_port_free(p) for p in ports):
-        time.sleep(0.1)
-    assert all(_port_free(p) for p in ports), "a master still holds its port"
+    assert wait_until(lambda: all(_port_free(p) for p in ports), 5), "a master still holds its port"
 
 
 def test_invalid_parameter_stops_the_nodelet_with_its_name():

@@ -10,7 +10,7 @@ import time
 
 import pytest
 
-from offshore_gnc.testing import MasterSet
+from offshore_gnc.testing import MasterSet, wait_until
 from offshore_gnc.testing.ardusub_peer import FakeArduSub, free_udp_port
 
 STARTUP = 4.0  # [s] startup_timeout for the autopilot / COLA2
@@ -46,15 +46,6 @@ def nodes(ms):
     return set(out.split())
 
 
-def wait(pred, timeout, step=0.2):
-    deadline = time.time() + timeout
-    while time.time() < deadline:
-        if pred():
-            return True
-        time.sleep(step)
-    return pred()
-
-
 def assert_fails_naming(ms, proc, name, *needles):
     try:
         proc.wait(120)
@@ -78,7 +69,7 @@ def test_acolor_starts_every_hardware_node(ms, sonar_tty):
         p = launch(ms, "acolor_ok", vehicle_model="acolor", sonar_port=sonar_tty,
                    mavlink_url="udpin:127.0.0.1:%d" % port, startup_timeout=STARTUP)
         want = {"/auv/micron", "/auv/ardusub_bridge", "/usbl", "/auv/sonar_targets", "/auv/mission"}
-        assert wait(lambda: want <= nodes(ms), 90), (nodes(ms), log(ms, "acolor_ok")[-3000:])
+        assert wait_until(lambda: want <= nodes(ms), 90, step=0.2), (nodes(ms), log(ms, "acolor_ok")[-3000:])
         time.sleep(STARTUP + 2.0)  # past the autopilot's startup timeout: still running
         assert p.poll() is None, log(ms, "acolor_ok")[-3000:]
         assert want <= nodes(ms)
@@ -114,7 +105,7 @@ def test_girona500_starts_every_hardware_node(ms, sonar_tty):
                         name="fake_cola2")
     p = launch(ms, "g500_ok", vehicle_model="girona500", sonar_port=sonar_tty, startup_timeout=STARTUP)
     want = {"/auv/micron", "/auv/cola2_bridge", "/usbl", "/auv/sonar_targets", "/auv/mission"}
-    assert wait(lambda: want <= nodes(ms), 90), (nodes(ms), log(ms, "g500_ok")[-3000:])
+    assert wait_until(lambda: want <= nodes(ms), 90, step=0.2), (nodes(ms), log(ms, "g500_ok")[-3000:])
     time.sleep(STARTUP + 2.0)
     assert p.poll() is None, log(ms, "g500_ok")[-3000:]
     assert want <= nodes(ms)

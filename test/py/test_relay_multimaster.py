@@ -14,6 +14,7 @@ import time
 import pytest
 import yaml
 
+from offshore_gnc import VEHICLES
 from offshore_gnc.testing import MasterSet, free_port, wait_until
 
 HERE = os.path.abspath(__file__)
@@ -30,9 +31,7 @@ def _probe(argv):
     if mode == "pub":  # pub TOPIC N RATE
         n, rate = int(argv[2]), float(argv[3])
         pub = rospy.Publisher(topic, String, queue_size=1000)
-        deadline = time.time() + 20
-        while pub.get_num_connections() < 1 and time.time() < deadline:  # the relay's subscriber
-            time.sleep(0.02)
+        wait_until(lambda: pub.get_num_connections() >= 1, 20, step=0.02)  # the relay's subscriber
         r = rospy.Rate(rate)
         for i in range(n):
             pub.publish(String(data=str(i)))
@@ -106,7 +105,7 @@ def link_status(master, timeout=30):  # generous: under the sanitizers a rostopi
 def test_shipped_configs_carry_the_thesis_topics_latched_target():
     """config/relay/{usv,auv}.yaml: /usv_gps + /usv_heading USV -> AUV, /target AUV -> USV (latched)."""
     port = free_port()
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         usv, auv = ms["usv"], ms["auv"]
         key_file = os.path.join(usv.log_dir, "key")
         with open(key_file, "w") as f:
@@ -149,7 +148,7 @@ def test_shipped_configs_carry_the_thesis_topics_latched_target():
 
 def test_renaming_direction_and_first_message():
     port = free_port()
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         usv, auv = ms["usv"], ms["auv"]
         out = os.path.join(usv.log_dir, "renamed.txt")
         probe(usv, "sub", "/usv/from_auv", out, name="sub")
@@ -169,7 +168,7 @@ def test_renaming_direction_and_first_message():
 
 def test_type_mismatch_is_refused_naming_the_topic():
     port = free_port()
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         usv, auv = ms["usv"], ms["auv"]
         start_relay(usv, cfg("usv", [{"name": "auv"}],
                              [{"topic": "/target", "type": "std_msgs/String", "direction": "in"}], listen_port=port))
@@ -188,7 +187,7 @@ def test_type_mismatch_is_refused_naming_the_topic():
 
 def test_wrong_key_delivers_nothing_and_counts():
     port = free_port()
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         usv, auv = ms["usv"], ms["auv"]
         target_link(usv, auv, port, key="not-the-same-key-at-all")
         auv.publish("/target", "std_msgs/String", {"data": "secret"})
@@ -204,7 +203,7 @@ def test_vehicles_on_different_site_origins_refuse_each_other_naming_both():
     refuses the other at link-up, /relay/link_status and the log name both origins, and no /target crosses, which
     the USV would otherwise have placed 14,000 km off."""
     port = free_port()
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         usv, auv = ms["usv"], ms["auv"]
         target_link(usv, auv, port, auv_origin="-42.8821,147.3514")
         auv.publish("/target", "std_msgs/String", {"data": "a target in the wrong frame"})
@@ -221,7 +220,7 @@ def test_vehicles_on_different_site_origins_refuse_each_other_naming_both():
 def test_receiver_restart_mid_stream_loses_nothing():
     port = free_port()
     n = 300
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         usv, auv = ms["usv"], ms["auv"]
         out = os.path.join(usv.log_dir, "count.txt")
         probe(usv, "sub", "/count", out, name="sub")
@@ -311,7 +310,7 @@ def diagnostics_counters(master, timeout=10):
 
 def test_bad_frames_and_floods_are_dropped_counted_bounded():
     port = free_port()
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         usv, auv = ms["usv"], ms["auv"]
         out = os.path.join(usv.log_dir, "count.txt")
         probe(usv, "sub", "/count", out, name="sub")
@@ -369,7 +368,7 @@ def test_hardware_launch_with_the_simulation_key_stops_and_says_how_to_make_one(
         assert "simulation key" in out and "scripts/relay-key FILE" in out, out
         rc, nodes = usv.call(["rosnode", "list"])
         assert "/relay" not in nodes and "/usv_manager" not in nodes, nodes
-        for vehicle in ("usv", "auv"):  # the AUV's launch file includes the same check
+        for vehicle in VEHICLES:  # the AUV's launch file includes the same check
             rc, out = usv.call(["roslaunch", "--dump-params", os.path.join(REPO, "launch", vehicle + ".launch"),
                                 "sim:=false"], timeout=60)
             assert "simulation key" in out and "key_fingerprint:" not in out, out  # (--dump-params exits 0)
@@ -382,7 +381,7 @@ def test_hardware_launch_with_the_simulation_key_stops_and_says_how_to_make_one(
 
 def test_relay_on_hardware_refuses_weak_keys_and_links_with_a_deployment_key():
     port = free_port()
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:
         usv, auv = ms["usv"], ms["auv"]
         in_cfg = cfg("usv", [{"name": "auv"}], [{"topic": "/chat", "type": "std_msgs/String", "direction": "in"}],
                      listen_port=port, sim=False)  # KEY: 25 bytes of text, no deployment key

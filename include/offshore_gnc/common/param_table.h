@@ -3,7 +3,7 @@
 // default is the struct's own initial value (or a vehicle preset's), never repeated here. validate() checks a
 // struct against its table; the ROS reader (ros_util::readParams) and the YAML reader (readParamsYaml) fill a
 // struct through the same table, so a range or a name cannot differ between a nodelet, a YAML file loaded by a
-// ROS-free tool, and the dynamic_reconfigure .cfg (a test holds the .cfg ranges to the tables).
+// ROS-free tool, and the dynamic_reconfigure .cfg (generated from the tables: common/reconfigure_form.h).
 #include <cstddef>
 #include <cstdio>
 #include <functional>

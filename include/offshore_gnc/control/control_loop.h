@@ -12,6 +12,7 @@
 
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/common/reconfigure_form.h"
 #include "offshore_gnc/control/vehicle_control.h"
 #include "offshore_gnc/models/reference.h"
 #include "offshore_gnc/models/state.h"
@@ -28,6 +29,9 @@ struct ControlLoopParams {
   AcolorControlParams acolor;
   // vehicle, rate, input_timeout; the active vehicle's own table is read at the same level.
   static const ParamTable<ControlLoopParams>& table();
+  // What the Control nodelet's dynamic_reconfigure form shows: entries of the vehicles' tables (cfg/Control.cfg
+  // is generated from this and them; a field's default is the first of usv, girona500, acolor that has it).
+  static const std::vector<ReconfigureGroup>& reconfigurable();
   void validate() const;
 };
 

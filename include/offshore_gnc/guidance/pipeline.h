@@ -11,6 +11,7 @@
 
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/common/reconfigure_form.h"
 #include "offshore_gnc/guidance/los.h"
 #include "offshore_gnc/guidance/obstacle_memory.h"
 #include "offshore_gnc/guidance/sbb.h"
@@ -34,6 +35,9 @@ struct GuidanceParams {
   // The vehicle's defaults (thesis Tables 4.1-4.3 and what the simulations showed; docs/parameters.md).
   static GuidanceParams preset(const std::string& vehicle);
   static const ParamTable<GuidanceParams>& table();
+  // What the Guidance nodelet's dynamic_reconfigure form shows (cfg/Guidance.cfg is generated from this and
+  // table(); the defaults it shows are this struct's).
+  static const std::vector<ReconfigureGroup>& reconfigurable();
   void validate() const;
 };
 

@@ -3,7 +3,7 @@
 Each vehicle of the co-operative system has its own master (thesis chapter 5), so the integration tests need
 more than the one master rostest gives. Usage:
 
-    with MasterSet(["usv", "auv"]) as ms:
+    with MasterSet(VEHICLES) as ms:  # offshore_gnc.VEHICLES: usv, auv
         ms["usv"].set_param("/site/origin", "61.4507,23.7270")  # the site (launch/site.launch in a launch file)
         ms["usv"].run(["rosrun", "nodelet", "nodelet", "standalone", "offshore_gnc/WorldFrames"], name="frames")
         msg = ms["usv"].wait_for_message("/origin", timeout=10)
@@ -21,6 +21,10 @@ import tempfile
 import time
 
 import yaml
+
+from offshore_gnc import VEHICLES
+
+from .poll import wait_until
 
 _LIVE = set()  # every Popen still running, for the atexit / SIGTERM safety net
 
@@ -177,12 +181,7 @@ class Master:
         return sorted(t for t, _ in rosgraph.Master("/harness", master_uri=self.uri).getPublishedTopics("/"))
 
     def wait_for_topic(self, topic, timeout=10.0):
-        deadline = time.time() + timeout
-        while time.time() < deadline:
-            if topic in self.topics():
-                return True
-            time.sleep(0.1)
-        return False
+        return wait_until(lambda: topic in self.topics(), timeout)
 
     def set_param(self, name, value):
         import rosgraph
@@ -192,15 +191,13 @@ class Master:
         """True once the parameter exists (e.g. /use_sim_time, set by a launch file), False after timeout."""
         import rosgraph
         m = rosgraph.Master("/harness", master_uri=self.uri)
-        deadline = time.time() + timeout
-        while time.time() < deadline:
+
+        def has():
             try:
-                if m.hasParam(name):
-                    return True
-            except OSError:
-                pass
-            time.sleep(0.1)
-        return False
+                return m.hasParam(name)
+            except OSError:  # the master not up yet
+                return False
+        return bool(wait_until(has, timeout))
 
     def wait_for_message(self, topic, timeout=10.0):
         """First message on topic (dict, from rostopic echo), or raise TimeoutError."""
@@ -226,7 +223,7 @@ class Master:
 class MasterSet:
     """Context manager: several masters by name; everything torn down on exit, failure or not."""
 
-    def __init__(self, names=("usv", "auv"), log_dir=None, keep_logs_on_failure=True):
+    def __init__(self, names=VEHICLES, log_dir=None, keep_logs_on_failure=True):
         self._own_dir = log_dir is None
         self.log_dir = log_dir or tempfile.mkdtemp(prefix="offshore_gnc_masters_")
         os.makedirs(self.log_dir, exist_ok=True)

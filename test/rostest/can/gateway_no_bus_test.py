@@ -2,13 +2,13 @@
 """CanGateway without its interface: diagnostics and the latched bus state say the bus is down, bad commands are
 counted, the jets (never heard) are reported not answering, no crash."""
 import math
-import time
 import unittest
 
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from offshore_gnc.msg import CanBusState, JoystickCommand, WaterjetAnswering
+from offshore_gnc.testing.poll import wait_until
 
 
 class GatewayNoBus(unittest.TestCase):
@@ -30,22 +30,15 @@ class GatewayNoBus(unittest.TestCase):
         cls.statuses.extend(s for s in msg.status if "can gateway" in s.name)
 
     def wait_for(self, pred, timeout=20.0):
-        end = time.time() + timeout
-        while time.time() < end and not rospy.is_shutdown():
-            for s in list(self.statuses):
-                if pred(s):
-                    return s
-            time.sleep(0.1)
-        return None
+        """The first gateway status for which pred(status), or None."""
+        return wait_until(lambda: next((s for s in list(self.statuses) if pred(s)), None), timeout)
 
     def test_down_bus_reported_and_bad_commands_counted(self):
         s = self.wait_for(lambda s: True)
         self.assertIsNotNone(s, "no diagnostics from the gateway")
         self.assertEqual(s.level, DiagnosticStatus.ERROR)
         self.assertIn("down", s.message)
-        deadline = time.time() + 5.0
-        while self.pub.get_num_connections() == 0 and time.time() < deadline:
-            time.sleep(0.05)
+        wait_until(lambda: self.pub.get_num_connections() > 0, 5.0, step=0.05)
         for v in (math.nan, 2.0, -math.inf):
             self.pub.publish(JoystickCommand(surge=v))
         self.pub.publish(JoystickCommand(surge=0.3))
@@ -60,13 +53,10 @@ class GatewayNoBus(unittest.TestCase):
         values = {kv.key: kv.value for kv in s.values}
         self.assertEqual(values["port_jet"], "not answering")
         self.assertGreaterEqual(int(values["port_jet_timeouts"]), 1)
-        end = time.time() + 5.0
-        while time.time() < end and [False, False] not in self.answering:
-            time.sleep(0.05)
+        wait_until(lambda: [False, False] in self.answering, 5.0, step=0.05)
         self.assertIn([False, False], self.answering, "latched /usv/waterjet/answering: %s" % self.answering)
         # the safety supervisor's bus_off rule takes a bus that is down as off
-        while time.time() < end and not self.bus_states:
-            time.sleep(0.05)
+        wait_until(lambda: self.bus_states, 5.0, step=0.05)
         self.assertEqual(self.bus_states[:1], [(CanBusState.STATE_DOWN, "down")], "latched /usv/can/bus_state")
 
 

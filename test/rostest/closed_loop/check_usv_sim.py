@@ -16,6 +16,7 @@ from sensor_msgs import point_cloud2
 from sensor_msgs.msg import NavSatFix, PointCloud2
 
 from offshore_gnc.msg import JoystickCommand, WaterjetStatus
+from offshore_gnc.testing.poll import wait_until
 
 SIM_SECONDS = 8.0
 MANUAL_FROM = 4.5  # simulated time at which the manual joystick takes over
@@ -47,9 +48,7 @@ class UsvSim(unittest.TestCase):
         cls.listener = tf2_ros.TransformListener(cls.buf)
         auto = rospy.Publisher("/usv/joystick_cmd", JoystickCommand, queue_size=10)
         manual = rospy.Publisher("/usv/manual_cmd", JoystickCommand, queue_size=10)
-        deadline = time.time() + 30
-        while time.time() < deadline and (auto.get_num_connections() == 0 or manual.get_num_connections() == 0):
-            time.sleep(0.05)
+        wait_until(lambda: auto.get_num_connections() and manual.get_num_connections(), 30, step=0.05)
         cls.wall0 = time.time()
         t_start = c["clock"][-1] if c["clock"] else 0.0
         deadline = cls.wall0 + 60

@@ -11,6 +11,8 @@ from geometry_msgs.msg import PointStamped
 from sensor_msgs.msg import NavSatFix
 import tf2_geometry_msgs  # noqa: F401  (registers PointStamped with tf2)
 
+from offshore_gnc.testing.poll import wait_until
+
 
 class WorldFrames(unittest.TestCase):
     @classmethod
@@ -23,10 +25,7 @@ class WorldFrames(unittest.TestCase):
         cls.listener = tf2_ros.TransformListener(cls.buf)
 
     def test_origin_latched(self):
-        deadline = rospy.Time.now() + rospy.Duration(60)
-        while not self.origin and rospy.Time.now() < deadline:
-            rospy.sleep(0.05)
-        self.assertTrue(self.origin, "no message on /origin")
+        self.assertTrue(wait_until(lambda: self.origin, 60, step=0.05), "no message on /origin")
         msg = self.origin[0]
         lat, lon, alt = (float(v) for v in rospy.get_param("/site/origin").split(","))
         self.assertAlmostEqual(msg.latitude, lat)
@@ -35,20 +34,16 @@ class WorldFrames(unittest.TestCase):
         self.assertEqual(msg.header.frame_id, "map_ned")
 
     def test_grid_is_the_sites_own_zone(self):
-        deadline = rospy.Time.now() + rospy.Duration(60)
-        while rospy.Time.now() < deadline:
-            for arr in list(self.diags):
-                for st in arr.status:
-                    kv = {v.key: v.value for v in st.values}
-                    if "grid" in kv:
-                        # Hobart: UTM zone 55 south, about 528 km E, 5252 km N
-                        self.assertEqual(kv["grid"], "UTM 55S")
-                        self.assertAlmostEqual(float(kv["grid_easting_m"]) / 1000, 528.7, delta=1.0)
-                        self.assertAlmostEqual(float(kv["grid_northing_m"]) / 1000, 5252.0, delta=2.0)
-                        self.assertNotIn("tm35fin_easting_m", kv)
-                        return
-            rospy.sleep(0.1)
-        self.fail("no origin diagnostics with a grid")
+        def grid():
+            kvs = ({v.key: v.value for v in st.values} for arr in list(self.diags) for st in arr.status)
+            return next((kv for kv in kvs if "grid" in kv), None)
+        kv = wait_until(grid, 60)
+        self.assertTrue(kv, "no origin diagnostics with a grid")
+        # Hobart: UTM zone 55 south, about 528 km E, 5252 km N
+        self.assertEqual(kv["grid"], "UTM 55S")
+        self.assertAlmostEqual(float(kv["grid_easting_m"]) / 1000, 528.7, delta=1.0)
+        self.assertAlmostEqual(float(kv["grid_northing_m"]) / 1000, 5252.0, delta=2.0)
+        self.assertNotIn("tm35fin_easting_m", kv)
 
     def test_ned_is_enu_swapped(self):
         p = PointStamped()

@@ -8,6 +8,7 @@ import rostest
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry, Path
 from offshore_gnc.msg import GuidanceStatus, JoystickCommand, SafetyBox, SafetyBoxArray, Target, TargetArray
+from offshore_gnc.testing.poll import wait_until
 
 
 def odom(north, east, yaw_ned=0.0):
@@ -49,12 +50,8 @@ class GuidanceNodelets(unittest.TestCase):
         cls.timer = rospy.Timer(rospy.Duration(0.05), lambda _: cls.odom_pub.publish(odom(*cls.pose)))
 
     def wait(self, what, cond, timeout=20.0):
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        while not rospy.is_shutdown() and rospy.Time.now() < deadline:
-            if cond():
-                return
-            rospy.sleep(0.05)
-        self.fail("timed out waiting for " + what)
+        if not wait_until(cond, timeout, step=0.05):
+            self.fail("timed out waiting for " + what)
 
     def latest_status(self):
         return self.status[-1] if self.status else None

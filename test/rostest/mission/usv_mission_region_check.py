@@ -9,6 +9,7 @@ import rostest
 from nav_msgs.msg import Odometry
 
 from offshore_gnc.msg import MissionStatus, Target
+from offshore_gnc.testing.poll import wait_until
 
 
 class UsvMissionRegionCheck(unittest.TestCase):
@@ -19,10 +20,7 @@ class UsvMissionRegionCheck(unittest.TestCase):
         cls.sub = rospy.Subscriber("/usv/mission/status", MissionStatus, cls._on_status)
         cls.odom = rospy.Publisher("/usv/odom", Odometry, queue_size=10)
         cls.target = rospy.Publisher("/target", Target, queue_size=10, latch=True)
-        deadline = rospy.Time.now() + rospy.Duration(30.0)
-        while not rospy.is_shutdown() and rospy.Time.now() < deadline and (
-                cls.odom.get_num_connections() == 0 or cls.target.get_num_connections() == 0):
-            rospy.sleep(0.05)
+        wait_until(lambda: cls.odom.get_num_connections() and cls.target.get_num_connections(), 30.0, step=0.05)
         cls.timer = rospy.Timer(rospy.Duration(0.1), cls._pose)
 
     @classmethod
@@ -46,13 +44,10 @@ class UsvMissionRegionCheck(unittest.TestCase):
         with self.lock:
             del self.statuses[:]
         self.target.publish(t)
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        while rospy.Time.now() < deadline:
-            with self.lock:
-                hit = [s for s in self.statuses if want(s)]
-            if hit:
-                return hit[-1]
-            rospy.sleep(0.05)
+        hit = wait_until(lambda: next((s for s in reversed(self.statuses) if want(s)), None), timeout, step=0.05,
+                         lock=self.lock)
+        if hit:
+            return hit
         with self.lock:
             self.fail("no status as wanted after N %g E %g; last: %s" % (
                 north, east, self.statuses[-1] if self.statuses else "none"))

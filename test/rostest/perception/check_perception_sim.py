@@ -5,7 +5,6 @@ the simulated navigation error (GPS-compass noise or INS noise)."""
 import math
 import sys
 import threading
-import time
 import unittest
 
 import rospy
@@ -14,6 +13,7 @@ import yaml
 from nav_msgs.msg import Path
 
 from offshore_gnc.msg import TargetArray
+from offshore_gnc.testing.poll import wait_until
 
 VEHICLE = sys.argv[1] if len(sys.argv) > 1 else "usv"
 SCENARIO = yaml.safe_load(open(sys.argv[2])) if len(sys.argv) > 2 else {}
@@ -37,13 +37,7 @@ class PerceptionSimTest(unittest.TestCase):
         return cb
 
     def _wait(self, pred, timeout):
-        deadline = time.time() + timeout
-        while time.time() < deadline:
-            with self.lock:
-                if pred():
-                    return True
-            time.sleep(0.1)
-        return False
+        return wait_until(pred, timeout, lock=self.lock)
 
     def test_lidar_obstacles_at_scenario_positions(self):
         self.assertTrue(self._wait(lambda: len(self.targets) >= 10, 60), "fewer than 10 /usv/obstacles messages")

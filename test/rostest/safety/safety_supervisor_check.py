@@ -16,6 +16,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import FluidPressure
 
 from offshore_gnc.msg import LinkStatus, RcChannels, SafetyState, SonarBeam, ThrusterSetpoints, UsblFix
+from offshore_gnc.testing.poll import wait_until
 
 NAVIGATION_TIMEOUT = 0.5  # safety_supervisor.test
 NAVIGATION_RELEASE = 0.5
@@ -41,10 +42,7 @@ class SafetySupervisorCheck(unittest.TestCase):
             "thrusters": rospy.Publisher("/auv/thruster_setpoints", ThrusterSetpoints, queue_size=10),
             "rc": rospy.Publisher("/auv/rc_channels", RcChannels, queue_size=10),
         }
-        deadline = rospy.Time.now() + rospy.Duration(30.0)
-        while not rospy.is_shutdown() and rospy.Time.now() < deadline and \
-                any(p.get_num_connections() == 0 for p in cls.pubs.values()):
-            rospy.sleep(0.05)
+        wait_until(lambda: all(p.get_num_connections() for p in cls.pubs.values()), 30.0, step=0.05)
         cls.unconnected = [n for n, p in cls.pubs.items() if p.get_num_connections() == 0]
         cls.heartbeat_start = rospy.Time.now()
         cls.clear_since = cls.rc_since = cls.heartbeat_start + rospy.Duration(2.0)  # test_1 and test_2 set them
@@ -98,21 +96,15 @@ class SafetySupervisorCheck(unittest.TestCase):
 
     def wait_for(self, what, where, pred, timeout):
         """The first (received, message) of `where` for which pred(received, message), waiting at most `timeout`
-        s of ROS time."""
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        while not rospy.is_shutdown():
-            with self.lock:
-                for item in where:
-                    if pred(*item):
-                        return item
-            if rospy.Time.now() > deadline:
-                break
-            rospy.sleep(0.02)
+        s (wall time, which is ROS time here)."""
+        item = wait_until(lambda: next((i for i in where if pred(*i)), None), timeout, step=0.02, lock=self.lock)
+        if item:
+            return item
         with self.lock:
             last = where[-1][1] if where else None
         self.fail("timed out after %.1f s waiting for %s; last: %s" % (timeout, what, last))
 
-    def wait_until(self, t):
+    def sleep_until(self, t):
         while not rospy.is_shutdown() and rospy.Time.now() < t:
             rospy.sleep(0.02)
 
@@ -198,7 +190,7 @@ class SafetySupervisorCheck(unittest.TestCase):
                       lambda t, st: t >= got and st.level == DiagnosticStatus.ERROR and "max_depth" in st.message, 10.0)
 
         # RC channels count as the command stream: no command_timeout (2 s) since the switch, nor any other rule
-        self.wait_until(self.rc_since + rospy.Duration(2.5))
+        self.sleep_until(self.rc_since + rospy.Duration(2.5))
         with self.lock:
             later = [m for _, m in self.states + self.transitions if m.header.stamp > self.clear_since]
         others = [m for m in later if set(m.active_rules) - {"navigation_timeout", "max_depth"}]

@@ -16,6 +16,7 @@ from sensor_msgs.msg import FluidPressure, Imu
 from std_msgs.msg import UInt32
 
 from offshore_gnc.msg import SonarBeam, ThrusterSetpoints
+from offshore_gnc.testing.poll import wait_until
 
 DT = 0.01
 
@@ -41,10 +42,8 @@ class AuvSim(unittest.TestCase):
         cls.listener = tf2_ros.TransformListener(cls.buf)
         step = rospy.Publisher("/auv_sim/sim/step", UInt32, queue_size=10)
         cls.setpoints = rospy.Publisher("/auv/thruster_setpoints", ThrusterSetpoints, queue_size=10)
-        deadline = time.time() + 30
-        while time.time() < deadline and (step.get_num_connections() == 0 or not c["clock"]
-                                          or any(p.get_num_connections() == 0 for p in [cls.setpoints])):
-            time.sleep(0.05)
+        wait_until(lambda: step.get_num_connections() and c["clock"] and cls.setpoints.get_num_connections(), 30,
+                   step=0.05)
         time.sleep(0.5)  # let every subscription connect
         cls.clock_before = c["clock"][-1] if c["clock"] else None
         cls.run_steps(step, 500)
@@ -63,9 +62,7 @@ class AuvSim(unittest.TestCase):
         for _ in range(n // chunk):
             target += chunk
             pub.publish(UInt32(chunk))
-            deadline = time.time() + 10
-            while round(cls.got["clock"][-1] / DT) < target and time.time() < deadline:
-                time.sleep(0.002)
+            wait_until(lambda: round(cls.got["clock"][-1] / DT) >= target, 10, step=0.002)
 
     def test_lockstep_clock(self):
         self.assertAlmostEqual(self.clock_before, 0.0)

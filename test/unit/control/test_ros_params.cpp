@@ -1,5 +1,5 @@
-// Control.cfg against the vehicles' parameter tables: every .cfg parameter is an entry of at least one
-// vehicle's table (its name with '/' as '_') with the same range.
+// The Control form (cfg/Control.cfg, generated from the vehicles' tables) through the tables: the form starts from
+// the running vehicle's values, and a change reaches every vehicle's struct that has the field, no other.
 #include <gtest/gtest.h>
 #include <offshore_gnc/ControlConfig.h>
 
@@ -8,28 +8,21 @@
 
 using namespace offshore_gnc;
 
-TEST(Reconfigure, ControlCfgMatchesTheVehicleTables) {
-  const auto ranges = ros_util::cfgRanges<ControlConfig>();
-  ASSERT_FALSE(ranges.empty());
-  for (const auto& [name, range] : ranges) {
-    bool found = false;
-    EXPECT_EQ(ros_util::cfgMismatch(name, range, control::UsvControlParams::table(), found), "");
-    EXPECT_EQ(ros_util::cfgMismatch(name, range, control::Girona500ControlParams::table(), found), "");
-    EXPECT_EQ(ros_util::cfgMismatch(name, range, control::AcolorControlParams::table(), found), "");
-    EXPECT_TRUE(found) << "Control.cfg parameter '" << name << "' is in no vehicle's table";
-  }
-}
-
-TEST(Reconfigure, ControlCfgDefaultsAreAVehiclesDefaults) {
-  // One form for three vehicles (one runs per nodelet): each .cfg default is the default of a vehicle that has it.
-  for (const auto& [name, value] : ros_util::cfgDefaults<ControlConfig>()) {
-    std::string usv = ros_util::cfgDefaultMismatch(name, value, control::UsvControlParams::table(), {});
-    std::string g500 = ros_util::cfgDefaultMismatch(name, value, control::Girona500ControlParams::table(), {});
-    std::string acolor = ros_util::cfgDefaultMismatch(name, value, control::AcolorControlParams::table(), {});
-    const bool usv_has = ros_util::specForCfg(control::UsvControlParams::table(), name) != nullptr;
-    const bool g500_has = ros_util::specForCfg(control::Girona500ControlParams::table(), name) != nullptr;
-    const bool acolor_has = ros_util::specForCfg(control::AcolorControlParams::table(), name) != nullptr;
-    const bool some = (usv_has && usv.empty()) || (g500_has && g500.empty()) || (acolor_has && acolor.empty());
-    EXPECT_TRUE(some) << usv << " | " << g500 << " | " << acolor;
-  }
+TEST(Reconfigure, ControlRoundTripsThroughTheVehicleTables) {
+  control::Girona500ControlParams g500;
+  g500.yaw.kp = 7.0;
+  ControlConfig c = ros_util::toReconfigure<ControlConfig>(control::Girona500ControlParams::table(), g500);
+  EXPECT_DOUBLE_EQ(c.yaw_kp, 7.0);  // the running vehicle's value, not the form's default
+  EXPECT_DOUBLE_EQ(c.north_kd, g500.north.kd);
+  c.yaw_kp = 4.0;
+  c.filter_tf = 0.5;  // the USV's field: the Girona500 has no filter
+  const auto g = ros_util::fromReconfigure(c, control::Girona500ControlParams::table(), g500);
+  EXPECT_DOUBLE_EQ(g.yaw.kp, 4.0);
+  EXPECT_DOUBLE_EQ(g.north.kd, g500.north.kd);
+  control::UsvControlParams usv0;
+  usv0.surge.out_limit = 123.0;
+  const control::UsvControlParams usv = ros_util::fromReconfigure(c, control::UsvControlParams::table(), usv0);
+  EXPECT_DOUBLE_EQ(usv.yaw.kp, 4.0);
+  EXPECT_DOUBLE_EQ(usv.filter.tf, 0.5);
+  EXPECT_DOUBLE_EQ(usv.surge.out_limit, 123.0);  // not on the form: untouched
 }
