@@ -218,7 +218,8 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
     const bool last = leg_ + 1 >= wp_.size();
     double radius = p_.acceptance_radius;
     if (last && p_.final_radius > 0.0)
-      radius = p_.final_radius;
+      radius = final_run_blocked_ && p_.detour_radius > 0.0 ? std::min(p_.detour_radius, p_.final_radius)
+                                                            : p_.final_radius;
     else if (detour_[leg_] && p_.detour_radius > 0.0)
       radius = p_.detour_radius;
     if (dist > radius && !passed) break;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "offshore_gnc/common/geometry.h"
 #include "offshore_gnc/common/validate.h"
 
 namespace offshore_gnc {
@@ -202,6 +203,15 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
     replan(s, t);
     replan_ = false;
   }
+  if (s.position.allFinite() && !planned_.empty()) {
+    // (seen replayed, tuning seed 33 run 350: the recovery's run-in 10 m off across a moored vessel's end; the
+    // straight run set off the supervisor's all-stop every few seconds for 600 s, each hold where the wind had
+    // pushed the boat, until the hull met a buoy)
+    const bool blocked = finalRunBlocked(s.position.head<2>(), t);
+    if (blocked && !final_run_blocked_) counters_.increment("final_run_blocked");
+    final_run_blocked_ = blocked;
+    los_.setFinalRunBlocked(blocked);
+  }
   out.los = los_.update(s, std::min(std::max(dt, 0.0), 1.0));
   if (stale) out.los.status_text = "odometry stale: holding the last good position";
   else if (!reject_reason_.empty() && out.los.mode == Mode::kHoldFault) out.los.status_text = reject_reason_;
@@ -210,6 +220,14 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
   out.planned_changed = planned_changed_;
   out.boxes_changed = boxes_changed_;
   return true;
+}
+
+bool GuidancePipeline::finalRunBlocked(const Eigen::Vector2d& from, double t) const {
+  const Eigen::Vector2d to = planned_.back().head<2>();
+  const double reach = std::max({hull_.ahead, hull_.astern, hull_.abeam, p_.sbb.corridor});
+  for (const SbbObstacle& o : obstacles(t))
+    if (o.boxed && segmentDistance(from, to, o.origin) < 0.5 * std::max(o.length, o.width) + reach) return true;
+  return false;
 }
 
 void GuidancePipeline::keepHoldClear(double t, GuidanceOutput& out) {

@@ -35,6 +35,9 @@ const ParamTable<UsvMissionParams>& UsvMissionParams::table() {
               "the run-in (the Girona500's length; the aColor's 1.0 m fits in it)")
       .number("recovery_clearance", &P::recovery_clearance, 0.0, 100.0, "m",
               "recovering, the hull closing in and holding keeps this clear of an obstacle's extent (the side chosen)")
+      .number("run_in_clearance", &P::run_in_clearance, 0.0, 100.0, "m",
+              "recovering, the run-in point lies this far beyond an obstacle's extent and the hull's longest reach "
+              "(out of guidance's safety box about it)")
       .number("settle_time", &P::settle_time, 0.0, 3600.0, "s", "both vehicles stationary this long: RECOVERED")
       .number("station_time", &P::station_time, 0.0, 3600.0, "s",
               "arrived, on station at the target at least this long before leaving to recover the surfaced AUV")

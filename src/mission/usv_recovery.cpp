@@ -82,20 +82,28 @@ bool UsvMission::sweepClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, 
   return true;
 }
 
+Eigen::Vector2d UsvMission::recoveryPointOf(const Eigen::Vector2d& auv, const Eigen::Vector2d& up) const {
+  return auv - (p_.recovery_distance + hull_.ahead) * up;  // the reference point's: the bow at recovery_distance
+}
+
 Eigen::Vector2d UsvMission::recoveryAxis(const Eigen::Vector2d& auv) {
   // the hull from its stern at the run-in to its bow holding recovery_distance off the AUV
   const double run = hull_.astern + hull_.ahead + p_.waypoint_spacing;
+  const double reach = std::max({hull_.ahead, hull_.astern, hull_.abeam});
   auto clear = [&](const Eigen::Vector2d& up) {
     const Eigen::Vector2d bow = auv - p_.recovery_distance * up;
-    return sweepClear(bow - run * up, bow, hull_.abeam);
+    const Eigen::Vector2d run_in = recoveryPointOf(auv, up) - p_.waypoint_spacing * up;
+    return sweepClear(bow - run * up, bow, hull_.abeam) &&
+           std::all_of(obstacles_.begin(), obstacles_.end(), [&](const guidance::SbbObstacle& o) {
+             return (run_in - o.origin).norm() >= 0.5 * std::max(o.length, o.width) + reach + p_.run_in_clearance;
+           });
   };
   if (recovery_axis_.allFinite() && clear(recovery_axis_)) return recovery_axis_;
   // from the current's, by 30 degrees either way: of each pair first the side whose hold is nearer the USV
-  const double off = p_.recovery_distance + hull_.ahead;
   for (double deg : {0.0, 30.0, 60.0, 90.0}) {
     Eigen::Vector2d sides[2];
     for (int k = 0; k < 2; ++k) sides[k] = Eigen::Rotation2Dd(deg2rad(k ? -deg : deg)) * downstream_;
-    if (pose_ && ((auv - off * sides[1]) - *pose_).norm() < ((auv - off * sides[0]) - *pose_).norm())
+    if (pose_ && (recoveryPointOf(auv, sides[1]) - *pose_).norm() < (recoveryPointOf(auv, sides[0]) - *pose_).norm())
       std::swap(sides[0], sides[1]);
     for (const auto& up : sides)
       if (clear(up)) return up;
@@ -111,9 +119,8 @@ void UsvMission::planRecovery(double t) {
   // seed 7000 run 962: at the first side's run-in, the second side's point 16 m off across a buoy, held for at once).
   if (last_axis.allFinite() && last_axis.dot(recovery_axis_) < std::cos(deg2rad(10.0))) alongside_ = false;
   const Eigen::Vector2d auv = auv_pos_, up = recovery_axis_, u = *pose_;
-  const double off = p_.recovery_distance + hull_.ahead;  // the reference point's distance: the bow at recovery_distance
   const double heading = std::atan2(up.y(), up.x());     // bow on to the AUV
-  recovery_point_ = auv - off * up;                       // downstream of it
+  recovery_point_ = recoveryPointOf(auv, up);
   run_in_ = recovery_point_ - p_.waypoint_spacing * up;
   auv_planned_ = auv;
   settled_since_ = kNaN;
@@ -141,7 +148,7 @@ void UsvMission::planRecovery(double t) {
   // (The mission's own legs beside the AUV, 9.3 m off, were ordinary waypoints:
   // guidance's 16 m circle of acceptance cut them, and in the evaluation campaign the hull touched the AUV in 6 of
   // 100 runs, 2026-12-05.) Only then: a box behind the USV merged with a shore's boxes and blocked the way.
-  round_auv_ = segmentDistance(u, run_in_, auv) < off;
+  round_auv_ = segmentDistance(u, run_in_, auv) < (recovery_point_ - auv).norm();
   std::vector<Eigen::Vector2d> path;
   for (const auto& w : guidance::straightLine({u.x(), u.y(), 0.0}, {run_in_.x(), run_in_.y(), 0.0}, p_.waypoint_spacing))
     path.push_back(w.head<2>());

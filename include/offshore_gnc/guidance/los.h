@@ -95,6 +95,11 @@ class LosGuidance {
   // One guidance step at time dt after the previous one. Never returns NaN: bad pose -> kHoldFault.
   LosOutput update(const VehicleState& s, double dt);
 
+  // Whether dynamic positioning's straight run from the vehicle to the last waypoint would pass an obstacle (the
+  // pipeline's check, each step): then the last waypoint is reached as a detour corner is (detour_radius, or
+  // passed), not on final_radius, and the path's legs lead to it.
+  void setFinalRunBlocked(bool blocked) { final_run_blocked_ = blocked; }
+
   const Counters& counters() const { return counters_; }
   std::size_t activeLeg() const { return leg_; }
 
@@ -110,6 +115,7 @@ class LosGuidance {
   double beta_hat_ = 0.0;
   Eigen::Vector2d crab_ned_ = Eigen::Vector2d::Zero();  // b of crab_ned
   bool finished_ = false;
+  bool final_run_blocked_ = false;
   bool have_pose_ = false;
   std::string path_error_;
   Eigen::Vector3d last_pos_ = Eigen::Vector3d::Zero();

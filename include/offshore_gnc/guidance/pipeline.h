@@ -89,6 +89,9 @@ class GuidancePipeline {
   // A hold point too close to an obstacle (sbb/hold_clearance) is refused: the nearest clear point is held instead,
   // and the status says so (counter hold_point_in_box).
   void keepHoldClear(double t, GuidanceOutput& out);
+  // Dynamic positioning runs straight to its point and plans round nothing: the path's last point is taken on
+  // final_radius only when that run keeps the hull's reach (at least the corridor) clear of every boxed obstacle.
+  bool finalRunBlocked(const Eigen::Vector2d& from, double t) const;
 
   GuidanceParams p_;
   LosGuidance los_;
@@ -104,6 +107,7 @@ class GuidancePipeline {
   std::string reject_reason_;
   Eigen::Vector2d refused_hold_ = Eigen::Vector2d::Constant(1e300);  // the last hold point refused
   HullReach hull_;
+  bool final_run_blocked_ = false;
   std::optional<Eigen::Vector2d> moved_hold_;                        // ... and where it was moved
   Counters counters_;
 };

@@ -180,6 +180,12 @@ struct UsvMissionParams {
   double recovery_replan = 2.0;     // the recovery is planned again when the AUV's position moved this far [m]
   double auv_extent = 1.5;          // the surfaced AUV's size for guidance's safety box about it (keepClear) [m]
   double recovery_clearance = 3.0;  // the hull, holding and closing in, keeps this clear of an obstacle's extent [m]
+  // The run-in, where the USV waits for the AUV to settle, lies at least this far beyond an obstacle's extent and the
+  // hull's longest reach: out of guidance's safety box about it (6 m across), else neither its detour nor dynamic
+  // positioning's straight run gets there (tuning seed 33 runs 11, 350: a run-in 4.7 m off a moored vessel's corner,
+  // the supervisor's all-stop every few seconds for 600-2900 s, the wind setting the boat onto a buoy or the vessel;
+  // 8 m without the reach fixed run 11, not 350).
+  double run_in_clearance = 6.0;    // [m]
   double settle_time = 10.0;        // both vehicles stationary this long: RECOVERED [s]
   // Arrived, the USV holds on station at the target at least station_time (from first coming within station_radius)
   // before it leaves to recover a surfaced AUV; one that could not get on station goes after station_timeout.
@@ -270,6 +276,8 @@ class UsvMission {
   // The recovery's axis (from the run-in to the AUV): the last one while still clear of the obstacles, else the
   // clear one nearest to the current's (within 90 degrees: never upstream of the AUV); none clear: the current's.
   Eigen::Vector2d recoveryAxis(const Eigen::Vector2d& auv);
+  // Where the reference point holds on the axis `up` (toward the AUV), downstream of it: the bow recovery_distance off.
+  Eigen::Vector2d recoveryPointOf(const Eigen::Vector2d& auv, const Eigen::Vector2d& up) const;
   // No obstacle guidance plans round within `reach` + recovery_clearance of the segment a-b.
   bool sweepClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach) const;
   bool auvHeld(double t) const;  // the AUV has reported itself stationary for settle_time, the last report fresh

@@ -269,6 +269,20 @@ TEST(Los, LastWaypointNeedsTheFinalRadiusAndSlowsDown) {
   EXPECT_THROW(LosGuidance{bad}, ConfigError);
 }
 
+// The pipeline's word that dynamic positioning's straight run to the end passes an obstacle: the last waypoint is
+// then reached as a detour corner is (detour_radius), the leg leading to it.
+TEST(Los, ABlockedFinalRunTakesTheLastWaypointOnTheDetourRadius) {
+  LosParams p = plain();
+  p.final_radius = 10.0;
+  p.detour_radius = 3.0;
+  LosGuidance blocked(p), free(p);
+  for (LosGuidance* g : {&blocked, &free}) g->setPath({V3(0, 0, 0), V3(50, 0, 0)});
+  blocked.setFinalRunBlocked(true);
+  EXPECT_EQ(free.update(at(42, 1), 0.1).mode, Mode::kStationKeeping);  // 8 m short: inside final_radius
+  EXPECT_EQ(blocked.update(at(42, 1), 0.1).mode, Mode::kFollowPath);
+  EXPECT_EQ(blocked.update(at(47.5, 1), 0.1).mode, Mode::kStationKeeping);
+}
+
 TEST(Los, EndOfPathStationKeeping) {
   LosGuidance g(plain());
   g.setPath({V3(0, 0, 0), V3(50, 0, 0)});

@@ -374,3 +374,30 @@ TEST(GuidancePipeline, KeepsAHoldClearOfAnObstacleLeftOutOfTheLidarsView) {
   EXPECT_GT((o.reference.point.head<2>() - Eigen::Vector2d(2, 0)).norm(), 0.5);
   EXPECT_NE(o.los.status_text.find("too close to obstacle 7"), std::string::npos) << o.los.status_text;
 }
+
+// Dynamic positioning runs straight to its point and plans round nothing: inside final_radius of the path's end with
+// an obstacle between (off the path, so no detour is planned), the boat keeps following the leg until it is clear.
+TEST(GuidancePipeline, TheEndIsHeldOnlyWhenTheStraightRunThereIsClear) {
+  GuidanceParams p = GuidanceParams::preset("usv");
+  ASSERT_DOUBLE_EQ(p.los.final_radius, 10.0);
+  GuidancePipeline g(p);
+  GuidanceOutput o;
+  g.setPath(straightLine({0, 0, 0}, {50, 0, 0}, 10.0));
+  g.setHullReach({5.3, 2.7, 1.3});
+  SbbObstacle b = buoy(45, 13);  // 13 m off the path: no safety box cuts it
+  g.setState(at(45, 8, -1.2), 0.0);  // 9.4 m from the end, 8 m off the leg, the buoy 5 m abeam
+  g.setObstacles({b}, 0.0);
+  ASSERT_TRUE(g.update(0.1, 0.1, o));
+  EXPECT_EQ(g.plan().status, "path clear");
+  EXPECT_EQ(o.los.mode, Mode::kFollowPath);
+  EXPECT_EQ(g.counters().get("final_run_blocked"), 1u);
+  g.setState(at(48, 4, -1.2), 0.2);  // the run from here keeps 5.3 m + the buoy's half extent clear of it
+  g.setObstacles({b}, 0.2);
+  ASSERT_TRUE(g.update(0.3, 0.1, o));
+  EXPECT_EQ(o.los.mode, Mode::kStationKeeping);
+  GuidancePipeline unhindered(p);  // without the buoy: held at once
+  unhindered.setPath(straightLine({0, 0, 0}, {50, 0, 0}, 10.0));
+  unhindered.setState(at(45, 8, -1.2), 0.0);
+  ASSERT_TRUE(unhindered.update(0.1, 0.1, o));
+  EXPECT_EQ(o.los.mode, Mode::kStationKeeping);
+}

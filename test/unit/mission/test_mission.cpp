@@ -626,7 +626,9 @@ TEST(UsvMission, HoldsAtTheTargetItsStationTimeBeforeTheRecovery) {
 // round nothing, so the mission turns the axis (30 degrees, to the USV's side) until the hull's whole run keeps
 // recovery_clearance from it; the AUV's own keep-clear box is not an obstacle of this kind.
 TEST(UsvMission, TurnsTheRecoveryAxisOffAnObstacleUnderTheCloseIn) {
-  UsvMission m;
+  UsvMissionParams p;
+  p.run_in_clearance = 0.0;  // the run along the axis alone (the run-in's own clearance: TheRunInKeepsOut...)
+  UsvMission m(p);
   arrived(m);
   guidance::SbbObstacle buoy, auv_box;
   buoy.id = 7;
@@ -674,6 +676,30 @@ TEST(UsvMission, AnotherSideIsClosedInFromItsOwnRunIn) {
   auto path = m.takePath();
   ASSERT_TRUE(path);
   EXPECT_LT((path->back() - (m.recoveryPoint() - 10.0 * up)).norm(), 1e-9);  // its run-in, not its point
+}
+
+// The run-in, where the USV waits for the AUV to settle, keeps run_in_clearance beyond an obstacle's extent even
+// where the hull's run in along the axis passes it well clear (tuning seed 33 runs 11, 350: a run-in 4.7 m off a
+// moored vessel's corner was never reached).
+TEST(UsvMission, TheRunInKeepsOutOfAnObstaclesSafetyBox) {
+  UsvMission m;
+  arrived(m);
+  const guidance::SbbObstacle buoy{7, {57, 22}, 0.6, 0.6};  // 7 m off the run along the current's axis, 7.5 m off its run-in
+  m.setObstacles({buoy});
+  m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
+  ASSERT_EQ(m.phase(), UsvPhase::Recovery);
+  const Eigen::Vector2d up = (Eigen::Vector2d(50, 0) - m.recoveryPoint()).normalized();
+  EXPECT_GT(std::acos(up.dot(Eigen::Vector2d(0, -1))), deg2rad(20.0));  // not the current's axis
+  const Eigen::Vector2d run_in = m.recoveryPoint() - 10.0 * up;
+  EXPECT_GE((run_in - buoy.origin).norm(), 0.3 + 5.3 + UsvMissionParams{}.run_in_clearance);  // + the bow's reach
+  EXPECT_EQ(m.counters().get("recovery_side_blocked"), 0u);
+  UsvMissionParams near;
+  near.run_in_clearance = 0.0;  // only the run along the axis checked: the current's axis, beside the buoy
+  UsvMission n(near);
+  arrived(n);
+  n.setObstacles({buoy});
+  n.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
+  EXPECT_LT((n.recoveryPoint() - Eigen::Vector2d(50, 9.3)).norm(), 1e-9);
 }
 
 TEST(UsvMission, KeepsItsDistanceFromAnAuvThatMoves) {
