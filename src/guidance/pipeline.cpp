@@ -224,7 +224,7 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
 
 bool GuidancePipeline::finalRunBlocked(const Eigen::Vector2d& from, double t) const {
   const Eigen::Vector2d to = planned_.back().head<2>();
-  const double reach = std::max({hull_.ahead, hull_.astern, hull_.abeam, p_.sbb.corridor});
+  const double reach = std::max(hull_.longest(), p_.sbb.corridor);
   for (const SbbObstacle& o : obstacles(t))
     if (o.boxed && segmentDistance(from, to, o.origin) < 0.5 * std::max(o.length, o.width) + reach) return true;
   return false;

@@ -76,9 +76,9 @@ void UsvMission::setObstacles(const std::vector<guidance::SbbObstacle>& obstacle
       obstacles_.push_back(o);
 }
 
-bool UsvMission::sweepClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach) const {
+bool UsvMission::sweepClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach, double clearance) const {
   for (const auto& o : obstacles_)
-    if (segmentDistance(a, b, o.origin) < 0.5 * std::max(o.length, o.width) + reach + p_.recovery_clearance) return false;
+    if (segmentDistance(a, b, o.origin) < 0.5 * std::max(o.length, o.width) + reach + clearance) return false;
   return true;
 }
 
@@ -89,14 +89,11 @@ Eigen::Vector2d UsvMission::recoveryPointOf(const Eigen::Vector2d& auv, const Ei
 Eigen::Vector2d UsvMission::recoveryAxis(const Eigen::Vector2d& auv) {
   // the hull from its stern at the run-in to its bow holding recovery_distance off the AUV
   const double run = hull_.astern + hull_.ahead + p_.waypoint_spacing;
-  const double reach = std::max({hull_.ahead, hull_.astern, hull_.abeam});
   auto clear = [&](const Eigen::Vector2d& up) {
     const Eigen::Vector2d bow = auv - p_.recovery_distance * up;
     const Eigen::Vector2d run_in = recoveryPointOf(auv, up) - p_.waypoint_spacing * up;
-    return sweepClear(bow - run * up, bow, hull_.abeam) &&
-           std::all_of(obstacles_.begin(), obstacles_.end(), [&](const guidance::SbbObstacle& o) {
-             return (run_in - o.origin).norm() >= 0.5 * std::max(o.length, o.width) + reach + p_.run_in_clearance;
-           });
+    return sweepClear(bow - run * up, bow, hull_.abeam, p_.recovery_clearance) &&
+           sweepClear(run_in, run_in, hull_.longest(), p_.run_in_clearance);
   };
   if (recovery_axis_.allFinite() && clear(recovery_axis_)) return recovery_axis_;
   // from the current's, by 30 degrees either way: of each pair first the side whose hold is nearer the USV
@@ -134,9 +131,8 @@ void UsvMission::planRecovery(double t) {
   // sweep (the hull's longest reach either side of the line) is clear of what guidance plans round. A guard, not a
   // fix seen to act: seed 7000's recovery collisions replayed the same with it and without it.
   const Eigen::Vector2d from_point = u - recovery_point_;
-  const double sweep = std::max({hull_.ahead, hull_.astern, hull_.abeam});
   alongside_ = auvHeld(t) && (alongside_ || (from_point.dot(up) <= 0.0 && from_point.norm() <= p_.waypoint_spacing &&
-                                             sweepClear(u, recovery_point_, sweep)));
+                                             sweepClear(u, recovery_point_, hull_.longest(), p_.recovery_clearance)));
   if (alongside_) {
     station_ = recovery_point_;
     setPath(holdPath(recovery_point_, heading));

@@ -5,6 +5,7 @@
 // ROS-free, NED (x north, y east), metres and radians.
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -89,6 +90,7 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
 // clearance (an 8 m USV holding bow-on to a surfaced AUV 4 m off it put its bow on a buoy beside the AUV).
 struct HullReach {
   double ahead = 0.0, astern = 0.0, abeam = 0.0;
+  double longest() const { return std::max({ahead, astern, abeam}); }  // the hull's sweep as it turns about the point
 };
 
 struct SafeHold {

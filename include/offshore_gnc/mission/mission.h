@@ -278,8 +278,8 @@ class UsvMission {
   Eigen::Vector2d recoveryAxis(const Eigen::Vector2d& auv);
   // Where the reference point holds on the axis `up` (toward the AUV), downstream of it: the bow recovery_distance off.
   Eigen::Vector2d recoveryPointOf(const Eigen::Vector2d& auv, const Eigen::Vector2d& up) const;
-  // No obstacle guidance plans round within `reach` + recovery_clearance of the segment a-b.
-  bool sweepClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach) const;
+  // No obstacle guidance plans round within its extent / 2 + `reach` + `clearance` of the segment a-b (a point: a == b).
+  bool sweepClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach, double clearance) const;
   bool auvHeld(double t) const;  // the AUV has reported itself stationary for settle_time, the last report fresh
   void recover(double t);                           // RECOVERY's checks, each tick
 
