@@ -162,11 +162,13 @@ void printParameters() {
         geo::WorldFramesParams::table(), {{"default", geo::WorldFramesParams()}});
   table("LiDAR targets", "`config/perception/lidar_usv.yaml` -> the LidarTargets nodelet.",
         perception::LidarConfig::table(), {{"default", perception::LidarConfig()}});
-  table("Sonar targets", "`config/perception/sonar_auv.yaml` -> the SonarTargets and WallDetection nodelets.",
+  table("Sonar targets", "`config/perception/sonar_auv.yaml` -> the SonarTargets nodelet, the only one "
+        "fed the beams (WallDetection takes its sweeps on `sonar/sweep`).",
         perception::SonarConfig::table(), {{"default", perception::SonarConfig()}});
   table("Sonar image", "`config/perception/sonar_auv.yaml` -> the SonarTargets nodelet's image of the beams.",
         perception::SonarImageParams::table(), {{"default", perception::SonarImageParams()}});
-  table("Wall detection", "`config/perception/sonar_auv.yaml` -> the WallDetection nodelet (Publication II).",
+  table("Wall detection", "`config/perception/sonar_auv.yaml` -> the WallDetection nodelet (Publication II), "
+        "on the SonarTargets nodelet's sweeps.",
         perception::WallConfig::table(), {{"default", perception::WallConfig()}});
   table("Sensor frames", "both perception files: where targets are put and how long a frame waits for its pose.",
         perception::SensorFrameParams::table(), {{"default", perception::SensorFrameParams()}});

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numeric>
-#include <sstream>
 
 #include "offshore_gnc/common/validate.h"
 
@@ -12,37 +10,6 @@ namespace offshore_gnc {
 namespace perception {
 
 namespace {
-
-std::size_t typeSize(std::uint8_t t) {
-  switch (static_cast<FieldType>(t)) {
-    case FieldType::Int8: case FieldType::UInt8: return 1;
-    case FieldType::Int16: case FieldType::UInt16: return 2;
-    case FieldType::Int32: case FieldType::UInt32: case FieldType::Float32: return 4;
-    case FieldType::Float64: return 8;
-  }
-  return 0;
-}
-
-template <typename T>
-T load(const std::uint8_t* p) {
-  T v;
-  std::memcpy(&v, p, sizeof(T));  // PointCloud2 offsets need not be aligned
-  return v;
-}
-
-double read(const std::uint8_t* p, std::uint8_t t) {
-  switch (static_cast<FieldType>(t)) {
-    case FieldType::Int8: return load<std::int8_t>(p);
-    case FieldType::UInt8: return load<std::uint8_t>(p);
-    case FieldType::Int16: return load<std::int16_t>(p);
-    case FieldType::UInt16: return load<std::uint16_t>(p);
-    case FieldType::Int32: return load<std::int32_t>(p);
-    case FieldType::UInt32: return load<std::uint32_t>(p);
-    case FieldType::Float32: return load<float>(p);
-    case FieldType::Float64: return load<double>(p);
-  }
-  return 0.0;
-}
 
 constexpr std::uint32_t kMaxRings = 1024;
 
@@ -78,18 +45,6 @@ void LidarConfig::validate() const {
   requireRange("max_z", max_z, min_z, 1e4);
 }
 
-const char* toString(CloudError e) {
-  switch (e) {
-    case CloudError::None: return "ok";
-    case CloudError::Empty: return "empty_cloud";
-    case CloudError::MissingXyz: return "missing_xyz";
-    case CloudError::BadFieldType: return "bad_field";
-    case CloudError::SizeMismatch: return "size_mismatch";
-    case CloudError::BigEndian: return "big_endian";
-  }
-  return "unknown";
-}
-
 Eigen::Matrix3d levelling(double roll, double pitch) {
   return (Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
@@ -98,43 +53,10 @@ Eigen::Matrix3d levelling(double roll, double pitch) {
 LidarTargetExtractor::LidarTargetExtractor(const LidarConfig& cfg) : cfg_(cfg) { cfg_.validate(); }
 
 bool LidarTargetExtractor::checkLayout(const CloudView& c, LidarResult& r) {
-  std::ostringstream os;
-  auto fail = [&](CloudError e) {
-    r.error = e;
-    r.message = os.str();
-    counters_.increment(toString(e));
-    return false;
-  };
-  if (c.width == 0 || c.height == 0 || c.size == 0) {
-    os << "empty cloud (" << c.width << " x " << c.height << ", " << c.size << " bytes)";
-    return fail(CloudError::Empty);
-  }
-  if (!c.x.present || !c.y.present || !c.z.present) {
-    os << "cloud lacks an x, y or z field";
-    return fail(CloudError::MissingXyz);
-  }
-  if (c.big_endian) {
-    os << "big-endian clouds are not supported";
-    return fail(CloudError::BigEndian);
-  }
-  for (const CloudField* f : {&c.x, &c.y, &c.z}) {
-    const auto t = static_cast<FieldType>(f->datatype);
-    if (t != FieldType::Float32 && t != FieldType::Float64) {
-      os << "x/y/z must be FLOAT32 or FLOAT64, got datatype " << int(f->datatype);
-      return fail(CloudError::BadFieldType);
-    }
-    if (f->offset + typeSize(f->datatype) > c.point_step) {
-      os << "field at offset " << f->offset << " does not fit in point_step " << c.point_step;
-      return fail(CloudError::BadFieldType);
-    }
-  }
-  const std::uint64_t min_row = std::uint64_t(c.width) * c.point_step;
-  if (c.row_step < min_row || std::uint64_t(c.row_step) * c.height != c.size) {
-    os << "data size " << c.size << " disagrees with " << c.width << " x " << c.height << " points, point_step "
-       << c.point_step << ", row_step " << c.row_step;
-    return fail(CloudError::SizeMismatch);
-  }
-  return true;
+  r.error = checkCloudLayout(c, r.message);
+  if (r.error == CloudError::None) return true;
+  counters_.increment(toString(r.error));
+  return false;
 }
 
 std::size_t LidarTargetExtractor::find(std::size_t i) {
@@ -188,14 +110,15 @@ LidarResult LidarTargetExtractor::extract(const CloudView& c, const Eigen::Matri
       const std::uint8_t* pp = rp + std::size_t(col) * c.point_step;
       double x, y, z;
       if (fast) {
-        x = load<float>(pp + c.x.offset), y = load<float>(pp + c.y.offset), z = load<float>(pp + c.z.offset);
+        x = loadUnaligned<float>(pp + c.x.offset), y = loadUnaligned<float>(pp + c.y.offset);
+        z = loadUnaligned<float>(pp + c.z.offset);
       } else {
-        x = read(pp + c.x.offset, c.x.datatype), y = read(pp + c.y.offset, c.y.datatype);
-        z = read(pp + c.z.offset, c.z.datatype);
+        x = readField(pp + c.x.offset, c.x.datatype), y = readField(pp + c.y.offset, c.y.datatype);
+        z = readField(pp + c.z.offset, c.z.datatype);
       }
       std::size_t layer = row;
       if (use_ring) {
-        const double ring = read(pp + c.ring.offset, c.ring.datatype);
+        const double ring = readField(pp + c.ring.offset, c.ring.datatype);
         if (!(ring >= 0 && ring < kMaxRings)) {
           ++bad_ring;
           continue;

@@ -83,15 +83,8 @@ bool lookupPose(const tf2_ros::Buffer& tf, const std::string& target, const std:
   }
 }
 
-// Reads the sonar parameters shared with the wall detection (same names, same defaults).
-perception::SonarConfig readSonarConfig(const ros_util::ParamReader& p) {
-  perception::SonarConfig c;
-  ros_util::readParams(p, perception::SonarConfig::table(), c);
-  return c;
-}
-
-BeamFed feedBeam(perception::SonarTargetExtractor& ex, const offshore_gnc::SonarBeam& msg, const tf2_ros::Buffer& tf,
-                 const std::string& target_frame, double timeout, const std::string& who) {
+BeamFed SonarFeed::feed(const offshore_gnc::SonarBeam& msg, const std::string& who) {
+  perception::SonarTargetExtractor& ex = *extractor;
   const perception::SonarBeamView beam = beamView(msg);
   if (!ex.check(beam)) {
     ROS_ERROR_THROTTLE(5.0, "%s: rejected sonar beam: %zu bins, bearing %.3f rad, resolution %.3f m (counters in "
@@ -100,7 +93,7 @@ BeamFed feedBeam(perception::SonarTargetExtractor& ex, const offshore_gnc::Sonar
   }
   Eigen::Isometry3d pose;
   std::string err;
-  if (!lookupPose(tf, target_frame, msg.header.frame_id, msg.header.stamp, timeout, pose, err)) {
+  if (!lookupPose(*tf, target_frame, msg.header.frame_id, msg.header.stamp, tf_timeout, pose, err)) {
     ex.counters().increment("no_transform");
     ex.breakRun();
     ROS_WARN_THROTTLE(5.0, "%s: dropping sonar beam: no transform %s <- %s at %.3f: %s", who.c_str(),
@@ -165,7 +158,9 @@ std::vector<visualization_msgs::Marker> targetMarkers(const std::vector<offshore
 }
 
 void SonarFeed::readParams(const ros_util::ParamReader& p) {
-  extractor = std::make_unique<perception::SonarTargetExtractor>(readSonarConfig(p));
+  perception::SonarConfig c;
+  ros_util::readParams(p, perception::SonarConfig::table(), c);
+  extractor = std::make_unique<perception::SonarTargetExtractor>(c);
   perception::SensorFrameParams f;
   ros_util::readParams(p, perception::SensorFrameParams::table(), f);
   target_frame = f.target_frame;
@@ -188,7 +183,8 @@ Diagnostics::Diagnostics(ros::NodeHandle& nh, ros::NodeHandle& pnh, const std::s
     if (extra) extra(s);
     ros_util::addCounters(s, counters,
                           {"empty_cloud", "missing_xyz", "bad_field", "size_mismatch", "big_endian", "no_transform",
-                           "empty_beam", "bad_bearing", "bad_beam_geometry", "bad_pose"});
+                           "empty_beam", "bad_bearing", "bad_beam_geometry", "bad_pose", "non_finite_point",
+                           "wrong_frame"});
   });
   timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_->force_update(); });
 }

@@ -24,7 +24,8 @@
 namespace offshore_gnc {
 namespace perception_ros {
 
-// Field layout of a PointCloud2 (x, y, z, optional ring); the buffer is referenced, not copied.
+// Field layout of a PointCloud2 (x, y, z, optional ring): a LiDAR frame, or a sonar sweep as SonarTargets
+// publishes it; the buffer is referenced, not copied.
 perception::CloudView cloudView(const sensor_msgs::PointCloud2& m);
 perception::SonarBeamView beamView(const offshore_gnc::SonarBeam& m);
 
@@ -33,23 +34,15 @@ perception::SonarBeamView beamView(const offshore_gnc::SonarBeam& m);
 bool lookupPose(const tf2_ros::Buffer& tf, const std::string& target, const std::string& source,
                 const ros::Time& stamp, double timeout, Eigen::Isometry3d& pose, std::string& error);
 
-// Validates one sonar beam, looks up the sonar pose at its stamp and feeds it to the extractor; logs
-// (throttled, prefixed with `who`) and counts what it rejects or cannot position.
+// SonarTargets' beam input: the sonar parameters, a tf listener for the pose of every beam, and the extractor
+// that assembles the beams into sweeps (once: WallDetection takes the sweeps SonarTargets publishes).
 enum class BeamFed { Rejected, NoPose, Added };
-BeamFed feedBeam(perception::SonarTargetExtractor& ex, const offshore_gnc::SonarBeam& msg, const tf2_ros::Buffer& tf,
-                 const std::string& target_frame, double timeout, const std::string& who);
-
-// Sonar detection parameters, the same names and defaults for the sonar targets and wall detection nodelets.
-perception::SonarConfig readSonarConfig(const ros_util::ParamReader& p);
-
-// What the sonar targets and wall detection nodelets share: the sonar parameters, a tf listener for the pose
-// of every beam, and the sweep extractor the beams feed.
 struct SonarFeed {
-  void readParams(const ros_util::ParamReader& p);  // readSonarConfig + target_frame, tf_timeout; throws ConfigError
+  void readParams(const ros_util::ParamReader& p);  // SonarConfig + target_frame, tf_timeout; throws ConfigError
   void connect(ros::NodeHandle& nh);                 // tf buffer and listener
-  BeamFed feed(const offshore_gnc::SonarBeam& msg, const std::string& who) {
-    return feedBeam(*extractor, msg, *tf, target_frame, tf_timeout, who);
-  }
+  // Validates one beam, looks up the sonar pose at its stamp and feeds it to the extractor; logs (throttled,
+  // prefixed with `who`) and counts what it rejects or cannot position.
+  BeamFed feed(const offshore_gnc::SonarBeam& msg, const std::string& who);
   std::unique_ptr<perception::SonarTargetExtractor> extractor;
   std::unique_ptr<tf2_ros::Buffer> tf;
   std::unique_ptr<tf2_ros::TransformListener> listener;

@@ -1,6 +1,8 @@
 // SonarTargets: SonarBeam (auv/sonar) -> per sweep TargetArray (/auv/sonar/targets), the sweep as a
 // PointCloud2 (/auv/sonar/sweep), a Cartesian sonar image (/auv/sonar/image) and markers. Each beam is
-// positioned with the tf2 pose at its own stamp. Thin wrapper over SonarTargetExtractor and SonarImage.
+// positioned with the tf2 pose at its own stamp. Thin wrapper over SonarTargetExtractor and SonarImage. The only
+// nodelet that assembles sweeps: WallDetection takes its sweep cloud.
+#include <boost/make_shared.hpp>
 #include <cv_bridge/cv_bridge.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
@@ -86,7 +88,9 @@ class SonarTargetsNodelet : public nodelet::Nodelet {
     targets_pub_.publish(out);
     markers_.publish(perception_ros::targetMarkers(out.targets, 1.0f, 0.0f, 0.0f), h);
 
-    sensor_msgs::PointCloud2 cloud;
+    // Published as a shared pointer: WallDetection in the same manager gets it without a copy or serialisation.
+    const auto msg = boost::make_shared<sensor_msgs::PointCloud2>();
+    sensor_msgs::PointCloud2& cloud = *msg;
     cloud.header = h;
     sensor_msgs::PointCloud2Modifier mod(cloud);
     mod.setPointCloud2Fields(4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z",
@@ -99,7 +103,7 @@ class SonarTargetsNodelet : public nodelet::Nodelet {
         ++x; ++y; ++z; ++in;
       }
     }
-    sweep_pub_.publish(cloud);
+    sweep_pub_.publish(msg);
   }
 
   int image_every_ = 20;

@@ -181,5 +181,36 @@ WallPath planWallPath(const std::vector<WallSegment>& walls, const Eigen::Vector
   return p;
 }
 
+WallDetector::WallDetector(const WallConfig& cfg) : cfg_(cfg) { cfg_.validate(); }
+
+SweepWalls WallDetector::detect(const CloudView& c) {
+  SweepWalls r;
+  // an empty sweep is published as a cloud of no points with its fields: nothing to check
+  if (std::uint64_t(c.width) * c.height == 0 && c.size == 0) {
+    counters_.increment("empty_sweep");
+    return r;
+  }
+  r.error = checkCloudLayout(c, r.message);
+  if (r.error != CloudError::None) {
+    counters_.increment(toString(r.error));
+    return r;
+  }
+  r.points.reserve(std::size_t(c.width) * c.height);
+  for (std::uint32_t row = 0; row < c.height; ++row) {
+    for (std::uint32_t col = 0; col < c.width; ++col) {
+      const std::uint8_t* p = c.data + std::size_t(row) * c.row_step + std::size_t(col) * c.point_step;
+      const double x = readField(p + c.x.offset, c.x.datatype), y = readField(p + c.y.offset, c.y.datatype);
+      if (!std::isfinite(x) || !std::isfinite(y)) {
+        ++r.non_finite;
+        continue;
+      }
+      r.points.emplace_back(x, y);
+    }
+  }
+  if (r.non_finite) counters_.increment("non_finite_point", r.non_finite);
+  r.walls = extractWalls(r.points, cfg_);
+  return r;
+}
+
 }  // namespace perception
 }  // namespace offshore_gnc

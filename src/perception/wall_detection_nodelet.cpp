@@ -1,15 +1,18 @@
-// WallDetection: SonarBeam -> per sweep split-and-merge walls -> nav_msgs/Path of two waypoints at a set
-// distance from the chosen wall (/auv/sonar/wall_path, map_ned) + markers. Beams positioned with the tf2 pose
-// at their stamps (Algorithm 1 of the paper per beam, Algorithm 1 of Publication II per sweep).
+// WallDetection: the sonar targets' sweep cloud (/auv/sonar/sweep, one point per detection in acquisition order)
+// -> split-and-merge walls -> nav_msgs/Path of two waypoints at a set distance from the chosen wall
+// (/auv/sonar/wall_path, in the sweep's frame) + markers (Algorithm 1 of Publication II per sweep). The beams
+// are positioned and assembled into sweeps once, by SonarTargets; this nodelet never sees them.
 #include <nav_msgs/Path.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
 #include <tf2_ros/transform_listener.h>
 
 #include <atomic>
 #include <memory>
 
+#include "offshore_gnc/perception/sensor_frame.h"
 #include "offshore_gnc/perception/wall_detection.h"
 #include "offshore_gnc/ros/params.h"
 #include "offshore_gnc/ros/markers.h"
@@ -23,56 +26,67 @@ class WallDetectionNodelet : public nodelet::Nodelet {
     ros::NodeHandle& pnh = getPrivateNodeHandle();
     ros_util::ParamReader p(pnh);
     try {
-      sonar_.readParams(p);
-      ros_util::readParams(p, perception::WallConfig::table(), cfg_);
-      cfg_.validate();
+      perception::WallConfig cfg;
+      ros_util::readParams(p, perception::WallConfig::table(), cfg);
+      detector_ = std::make_unique<perception::WallDetector>(cfg);
+      ros_util::readParams(p, perception::SensorFrameParams::table(), frame_);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
     }
-    sonar_.connect(nh);
+    tf_ = std::make_unique<tf2_ros::Buffer>();
+    listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_, nh);
     path_pub_ = nh.advertise<nav_msgs::Path>("sonar/wall_path", 2, true);
     markers_.advertise(nh, "markers", "sonar_walls");
-    sub_ = nh.subscribe("sonar/beam", 200, &WallDetectionNodelet::onBeam, this);
+    sub_ = nh.subscribe("sonar/sweep", 5, &WallDetectionNodelet::onSweep, this);
     diag_ = std::make_unique<perception_ros::Diagnostics>(
-        nh, pnh, getName(), sonar_.extractor->counters(), [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+        nh, pnh, getName(), detector_->counters(), [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
           s.add("sweeps", sweeps_.load());
           s.add("last_walls", last_walls_.load());
           s.add("paths", paths_.load());
         });
   }
 
-  void onBeam(const offshore_gnc::SonarBeam::ConstPtr& msg) {
-    sonar_.feed(*msg, getName());
-    if (sonar_.extractor->sweepReady()) onSweep(sonar_.extractor->takeSweep());
-  }
-
-  void onSweep(const perception::SonarSweep& s) {
+  void onSweep(const sensor_msgs::PointCloud2::ConstPtr& msg) {
     ++sweeps_;
-    std::vector<Eigen::Vector2d> pts;
-    pts.reserve(s.detections.size());
-    for (const auto& d : s.detections) pts.emplace_back(d.point.x(), d.point.y());
-    const auto walls = perception::extractWalls(pts, cfg_);
+    // The path goes where the sweep is: a sweep in another frame than this nodelet's is a configuration error
+    // (the two nodelets read the same file), named rather than planned in a frame guidance does not expect.
+    if (msg->header.frame_id != frame_.target_frame) {
+      detector_->counters().increment("wrong_frame");
+      NODELET_ERROR_THROTTLE(5.0, "sweep in frame '%s', expected '%s' (target_frame): dropped",
+                             msg->header.frame_id.c_str(), frame_.target_frame.c_str());
+      return;
+    }
+    const perception::SweepWalls r = detector_->detect(perception_ros::cloudView(*msg));
+    if (r.error != perception::CloudError::None) {
+      NODELET_ERROR_THROTTLE(5.0, "bad sweep cloud dropped: %s (counters in diagnostics)", r.message.c_str());
+      return;
+    }
+    if (r.non_finite)
+      NODELET_ERROR_THROTTLE(5.0, "%zu non-finite points dropped from a sweep of %zu (counters in diagnostics)",
+                             r.non_finite, r.non_finite + r.points.size());
+    const auto& walls = r.walls;
     last_walls_ = walls.size();
-    const ros::Time stamp(s.end_stamp);
+    const ros::Time stamp = msg->header.stamp;  // the sweep's last beam
     Eigen::Isometry3d vehicle;
     std::string err;
-    if (!perception_ros::lookupPose(*sonar_.tf, sonar_.target_frame, cfg_.base_frame, stamp, sonar_.tf_timeout, vehicle, err)) {
-      sonar_.extractor->counters().increment("no_transform");
+    if (!perception_ros::lookupPose(*tf_, frame_.target_frame, detector_->config().base_frame, stamp,
+                                    frame_.tf_timeout, vehicle, err)) {
+      detector_->counters().increment("no_transform");
       NODELET_WARN_THROTTLE(5.0, "no vehicle pose for the wall path: %s", err.c_str());
       return;
     }
     // Heading: the body's forward axis expressed in the target frame (works for ENU or NED body conventions).
     const Eigen::Vector3d fwd = vehicle.linear() * Eigen::Vector3d::UnitX();
     const double yaw = std::atan2(fwd.y(), fwd.x());
-    const auto plan = perception::planWallPath(walls, vehicle.translation().head<2>(), yaw, cfg_);
+    const auto plan = detector_->plan(walls, vehicle.translation().head<2>(), yaw);
     std_msgs::Header h;
     h.stamp = stamp;
-    h.frame_id = sonar_.target_frame;
+    h.frame_id = frame_.target_frame;
     publishMarkers(walls, plan, h);
     if (!plan.ok) {
-      NODELET_WARN_THROTTLE(10.0, "no wall of at least %.1f m in the last sweep (%zu points)", cfg_.min_length,
-                            pts.size());
+      NODELET_WARN_THROTTLE(10.0, "no wall of at least %.1f m in the last sweep (%zu points)",
+                            detector_->config().min_length, r.points.size());
       return;
     }
     nav_msgs::Path path;
@@ -117,8 +131,10 @@ class WallDetectionNodelet : public nodelet::Nodelet {
     markers_.publish(std::move(a), h);
   }
 
-  perception::WallConfig cfg_;
-  perception_ros::SonarFeed sonar_;
+  std::unique_ptr<perception::WallDetector> detector_;
+  perception::SensorFrameParams frame_;
+  std::unique_ptr<tf2_ros::Buffer> tf_;
+  std::unique_ptr<tf2_ros::TransformListener> listener_;
   ros::Publisher path_pub_;
   ros_util::NamespaceMarkers markers_;
   ros::Subscriber sub_;

@@ -14,29 +14,11 @@
 
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/perception/cloud_view.h"
 #include "offshore_gnc/perception/target_geometry.h"
 
 namespace offshore_gnc {
 namespace perception {
-
-// sensor_msgs/PointField datatype codes (a wire format, so the core can read the buffer without ROS).
-enum class FieldType : std::uint8_t { Int8 = 1, UInt8 = 2, Int16 = 3, UInt16 = 4, Int32 = 5, UInt32 = 6, Float32 = 7, Float64 = 8 };
-
-struct CloudField {
-  bool present = false;
-  std::uint32_t offset = 0;
-  std::uint8_t datatype = 0;  // FieldType code as received (validated by the extractor)
-  std::uint32_t count = 1;
-};
-
-// A view of a PointCloud2's buffer: nothing is copied.
-struct CloudView {
-  const std::uint8_t* data = nullptr;
-  std::size_t size = 0;
-  std::uint32_t width = 0, height = 0, point_step = 0, row_step = 0;
-  bool big_endian = false;
-  CloudField x, y, z, ring;
-};
 
 struct LidarConfig {
   double min_range = 0.5;        // [m] closer returns are dropped (spray, the sensor mount)
@@ -58,9 +40,6 @@ struct LidarConfig {
   static const ParamTable<LidarConfig>& table();
   void validate() const;  // throws ConfigError naming the value
 };
-
-enum class CloudError { None, Empty, MissingXyz, BadFieldType, SizeMismatch, BigEndian };
-const char* toString(CloudError e);
 
 struct LidarResult {
   CloudError error = CloudError::None;

@@ -2,14 +2,17 @@
 // Sonar wall detection (Publication II, Algorithm 1), ROS-free: split-and-merge line extraction over the
 // sweep's points in acquisition order, then merging of collinear segments (also across the sweep's start,
 // so a wall crossing the 0-degree bearing stays one wall), then the two waypoints at a set distance from the
-// chosen wall, `spacing` apart, for the LOS path follower.
+// chosen wall, `spacing` apart, for the LOS path follower. WallDetector reads the sweep as the sonar targets
+// publish it (a PointCloud2 layout), so the beams are assembled into sweeps once, by SonarTargetExtractor.
 #include <Eigen/Core>
 
 #include <string>
 #include <vector>
 
 #include "offshore_gnc/common/angles.h"
+#include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/perception/cloud_view.h"
 
 namespace offshore_gnc {
 namespace perception {
@@ -52,6 +55,36 @@ struct WallPath {
 // of that frame's x/y: NED yaw for x north, y east).
 WallPath planWallPath(const std::vector<WallSegment>& walls, const Eigen::Vector2d& vehicle, double yaw,
                       const WallConfig& cfg);
+
+// What the wall detection made of one sweep.
+struct SweepWalls {
+  CloudError error = CloudError::None;
+  std::string message;                  // the reason when error != None
+  std::vector<Eigen::Vector2d> points;  // the sweep's finite detections (x, y), acquisition order
+  std::size_t non_finite = 0;           // points dropped for a NaN or infinite x or y
+  std::vector<WallSegment> walls;       // longest first
+};
+
+// The WallDetection nodelet's core. A sweep is the sonar targets' sweep cloud (`sonar/sweep`): one point per
+// detection, x, y, z in the world frame, in acquisition order (the order split-and-merge follows).
+class WallDetector {
+ public:
+  explicit WallDetector(const WallConfig& cfg);  // throws ConfigError
+  // A sweep without points is no error: the sonar saw nothing (no walls; counted empty_sweep). A malformed one
+  // (checkCloudLayout) has no walls and is counted under its error's name; a non-finite point is dropped and
+  // counted (non_finite_point): the sonar targets never publish one.
+  SweepWalls detect(const CloudView& sweep);
+  WallPath plan(const std::vector<WallSegment>& walls, const Eigen::Vector2d& vehicle, double yaw) const {
+    return planWallPath(walls, vehicle, yaw, cfg_);
+  }
+  const Counters& counters() const { return counters_; }
+  Counters& counters() { return counters_; }
+  const WallConfig& config() const { return cfg_; }
+
+ private:
+  WallConfig cfg_;
+  Counters counters_;
+};
 
 }  // namespace perception
 }  // namespace offshore_gnc

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Drives the perception nodelets with generated frames (ray-cast buoys, target, tank walls) from moving
-vehicles and checks the published targets and wall path against the ground truth; then feeds bad input and
+vehicles and checks the published targets and wall path against the ground truth; that the wall detection takes
+the sweeps the sonar targets assemble (never the beams) and plans from a sweep cloud alone; then feeds bad input and
 checks the diagnostics counters. All subscribers are created up front (see the rostest pitfall in the notes)."""
 import math
 import struct
@@ -9,6 +10,7 @@ import time
 import unittest
 
 import numpy as np
+import rosgraph
 import rospy
 import rostest
 import tf2_ros
@@ -26,6 +28,7 @@ SONAR_TARGET = (8.0, 6.0, 0.6)                          # AUV scene
 TANK = [((-10.0, -12.0), (20.0, -12.0)), ((20.0, -12.0), (20.0, 12.0)),
         ((20.0, 12.0), (-10.0, 12.0)), ((-10.0, 12.0), (-10.0, -12.0))]   # 30 x 24 m tank walls (NED)
 WALL_DISTANCE = 2.0
+BEAM_COUNTERS = ("empty_beam", "bad_bearing", "head_not_ready")   # what only a nodelet fed the beams counts
 
 
 def quat_yaw(yaw):
@@ -81,13 +84,15 @@ class PerceptionTest(unittest.TestCase):
         cls.static_tf = tf2_ros.StaticTransformBroadcaster()
         cls.cloud_pub = rospy.Publisher("/usv/lidar/points", PointCloud2, queue_size=10)
         cls.beam_pub = rospy.Publisher("/auv/sonar/beam", SonarBeam, queue_size=1000)
+        cls.sweep_pub = rospy.Publisher("/auv/sonar/sweep", PointCloud2, queue_size=10)   # sweeps of our own
         # Sensor mounts: LiDAR 1 m forward, 1.5 m up (ROS frame); sonar on top, x forward, y starboard, z down.
         lidar = cls._tf("usv/base_link", "usv/lidar", 1.0, 0.0, 1.5, (0, 0, 0, 1), rospy.Time(0))
         sonar = cls._tf("auv/base_link", "auv/sonar", 0.5, 0.0, 0.3, (1, 0, 0, 0), rospy.Time(0))
         cls.static_tf.sendTransform([lidar, sonar])
         deadline = time.time() + 30
         while time.time() < deadline and (cls.cloud_pub.get_num_connections() == 0 or
-                                          cls.beam_pub.get_num_connections() < 2):
+                                          cls.beam_pub.get_num_connections() == 0 or
+                                          not cls._subscribers("/auv/sonar/sweep")):
             time.sleep(0.1)
         time.sleep(1.0)
 
@@ -103,6 +108,17 @@ class PerceptionTest(unittest.TestCase):
         with cls.lock:
             for s in msg.status:
                 cls.diag[s.name] = {kv.key: kv.value for kv in s.values}
+
+    @staticmethod
+    def _subscribers(topic):
+        """The nodes (this checker left out) the master lists as subscribed to `topic`."""
+        subs = rosgraph.Master(rospy.get_name()).getSystemState()[1]
+        return sorted(n for t, nodes in subs if t == topic for n in nodes if n != rospy.get_name())
+
+    @classmethod
+    def _diag_of(cls, name):
+        with cls.lock:
+            return next((v for k, v in cls.diag.items() if name in k), {})
 
     @staticmethod
     def _tf(parent, child, x, y, z, q, stamp):
@@ -253,8 +269,68 @@ class PerceptionTest(unittest.TestCase):
         self.assertTrue(-10 < p1.x < 20 and -12 < p1.y < 12)
         self.assertAlmostEqual(p1.z, 5.0, delta=0.5)
 
+    # ------------------------------------------------------------------ sweeps assembled once
+    @staticmethod
+    def _sweep(stamp, points, frame="map_ned"):
+        """A sweep cloud as SonarTargets publishes it: x, y, z, intensity FLOAT32, one point per detection."""
+        msg = PointCloud2()
+        msg.header.stamp = stamp
+        msg.header.frame_id = frame
+        msg.height, msg.width = 1, len(points)
+        msg.fields = [PointField(name=c, offset=4 * i, datatype=PointField.FLOAT32, count=1)
+                      for i, c in enumerate(["x", "y", "z", "intensity"])]
+        msg.point_step, msg.row_step = 16, 16 * len(points)
+        msg.is_dense = True
+        msg.data = b"".join(struct.pack("<ffff", x, y, z, 200.0) for x, y, z in points)
+        return msg
+
+    def _wall_path_from(self, sweep, stamp):
+        """Publishes `sweep` (the AUV's pose at `stamp` already sent); the wall path it gives, or None."""
+        with self.lock:
+            before = len(self.paths)
+        self.sweep_pub.publish(sweep)
+        deadline = time.time() + 5
+        while time.time() < deadline:
+            with self.lock:
+                fresh = [p for p in self.paths[before:] if p.header.stamp == stamp]
+            if fresh:
+                return fresh[0]
+            time.sleep(0.02)
+        return None
+
+    def test_3_walls_from_the_sonar_targets_sweeps(self):
+        # The beams go to the sonar targets only; the wall detection (same manager) takes the published sweeps:
+        # every sweep the sonar targets assembled reached it (test_4: the bad beams reach the sonar targets only).
+        self.assertTrue(self._subscribers("/auv/sonar/sweep"), "nothing but the checker takes /auv/sonar/sweep")
+        sonar = wall = {}
+        deadline = time.time() + 5
+        while time.time() < deadline:
+            sonar, wall = self._diag_of("sonar_targets"), self._diag_of("wall_detection")
+            with self.lock:
+                published = len(self.sweeps)
+            if published > 0 and int(sonar.get("sweeps", -1)) == int(wall.get("sweeps", -1)) == published:
+                break
+            time.sleep(0.2)
+        self.assertGreater(published, 0)
+        self.assertEqual(int(sonar.get("sweeps", -1)), published, sonar)
+        self.assertEqual(int(wall.get("sweeps", -1)), published, wall)
+        # A sweep cloud alone, no beam: a straight wall 6 m north of an AUV heading east gives its path.
+        stamp = rospy.Time.now()
+        self._auv_pose(stamp, 0.0, 0.0, math.pi / 2)
+        time.sleep(0.05)
+        points = [(6.0, -8.0 + 0.1 * i, 5.0) for i in range(161)]
+        path = self._wall_path_from(self._sweep(stamp, points), stamp)
+        self.assertIsNotNone(path, "no /auv/sonar/wall_path from a published sweep")
+        self.assertEqual(path.header.frame_id, "map_ned")
+        p1, p2 = path.poses[0].pose.position, path.poses[1].pose.position
+        self.assertAlmostEqual(p1.x, 6.0 - WALL_DISTANCE, delta=0.05)   # abeam, on the AUV's side
+        self.assertAlmostEqual(p1.y, 0.0, delta=0.05)
+        self.assertAlmostEqual(p2.x, 6.0 - WALL_DISTANCE, delta=0.05)
+        self.assertAlmostEqual(p2.y, 2.0, delta=0.05)                    # ahead, eastwards
+        self.assertAlmostEqual(p1.z, 5.0, delta=0.05)
+
     # ------------------------------------------------------------------ bad input
-    def test_3_bad_input_is_counted(self):
+    def test_4_bad_input_is_counted(self):
         stamp = rospy.Time.now()
         self._usv_pose(stamp, 0.0, 0.0, 0.0)
         # no wait for the pose: the nodelet names a malformed cloud before it looks its pose up (counted no_transform
@@ -280,25 +356,49 @@ class PerceptionTest(unittest.TestCase):
         for m in (zero_bins, bad_bearing, fault):
             self.beam_pub.publish(m)
             time.sleep(0.1)
+        # Bad sweeps, straight to the wall detection: no points over a buffer, no y, a short buffer, NaN points (the
+        # wall still found from the rest), another frame; a sweep of no points is no error (nothing detected).
+        w_stamp = rospy.Time.now()
+        self._auv_pose(w_stamp, 0.0, 0.0, math.pi / 2)
+        good_points = [(6.0, -8.0 + 0.1 * i, 5.0) for i in range(161)]
+        no_points = self._sweep(w_stamp, good_points)
+        no_points.width, no_points.row_step = 0, 0
+        no_y = self._sweep(w_stamp, good_points)
+        no_y.fields = [f for f in no_y.fields if f.name != "y"]
+        short = self._sweep(w_stamp, good_points)
+        short.data = short.data[:-5]
+        elsewhere = self._sweep(w_stamp, good_points, frame="map")
+        for m in (no_points, no_y, short, elsewhere, self._sweep(w_stamp, [])):
+            self.sweep_pub.publish(m)
+            time.sleep(0.1)
+        nan_points = list(good_points)
+        nan_points[40] = (math.nan, 0.0, 5.0)
+        nan_points[90] = (6.0, math.inf, 5.0)
+        path = self._wall_path_from(self._sweep(w_stamp, nan_points), w_stamp)
+        self.assertIsNotNone(path, "no wall path from a sweep with two NaN points")
+        self.assertAlmostEqual(path.poses[0].pose.position.x, 6.0 - WALL_DISTANCE, delta=0.05)
         lidar_want = {"size_mismatch": 1, "missing_xyz": 1, "empty_cloud": 1, "no_transform": 1}
         sonar_want = {"empty_beam": 1, "bad_bearing": 1, "head_not_ready": 1}
+        wall_want = {"empty_cloud": 1, "missing_xyz": 1, "size_mismatch": 1, "wrong_frame": 1, "empty_sweep": 1,
+                     "non_finite_point": 2}
         deadline = time.time() + 10
         lidar = sonar = wall = {}
         while time.time() < deadline:
-            with self.lock:
-                lidar = next((v for k, v in self.diag.items() if "lidar_targets" in k), {})
-                sonar = next((v for k, v in self.diag.items() if "sonar_targets" in k), {})
-                wall = next((v for k, v in self.diag.items() if "wall_detection" in k), {})
+            lidar, sonar, wall = (self._diag_of(n) for n in ("lidar_targets", "sonar_targets", "wall_detection"))
             if all(int(lidar.get(k, 0)) >= v for k, v in lidar_want.items()) and \
                     all(int(sonar.get(k, 0)) >= v for k, v in sonar_want.items()) and \
-                    all(int(wall.get(k, 0)) >= v for k, v in sonar_want.items()):
+                    all(int(wall.get(k, 0)) >= v for k, v in wall_want.items()):
                 break
             time.sleep(0.2)
         for k, v in lidar_want.items():
             self.assertGreaterEqual(int(lidar.get(k, 0)), v, "lidar counter %s: %s" % (k, lidar))
         for k, v in sonar_want.items():
             self.assertGreaterEqual(int(sonar.get(k, 0)), v, "sonar counter %s: %s" % (k, sonar))
+        for k, v in wall_want.items():
             self.assertGreaterEqual(int(wall.get(k, 0)), v, "wall counter %s: %s" % (k, wall))
+        # the bad beams reached the sonar targets only
+        for k in BEAM_COUNTERS:
+            self.assertNotIn(k, wall, "the wall detection saw a beam: %s" % wall)
         # Still alive and working after the bad input.
         with self.lock:
             before = len(self.obstacles)

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/perception/sonar_targets.h"
@@ -33,6 +34,41 @@ std::vector<Eigen::Vector2d> sweepPoints(const std::vector<scenes::Wall>& walls,
     pts.emplace_back(o.x() + r * std::cos(b), o.y() + r * std::sin(b));
   }
   return pts;
+}
+
+// A sweep as SonarTargets publishes it on sonar/sweep: x, y, z, intensity FLOAT32 (point_step 16), one row, one
+// point per detection in acquisition order.
+struct SweepCloud {
+  std::vector<std::uint8_t> data;
+  std::uint32_t width = 0;
+  CloudView view() const {
+    CloudView v;
+    v.data = data.data();
+    v.size = data.size();
+    v.width = width;
+    v.height = 1;
+    v.point_step = 16;
+    v.row_step = 16 * width;
+    auto f = [](std::uint32_t off) {
+      CloudField c;
+      c.present = true; c.offset = off; c.datatype = std::uint8_t(FieldType::Float32);
+      return c;
+    };
+    v.x = f(0); v.y = f(4); v.z = f(8);
+    return v;
+  }
+};
+
+SweepCloud packSweep(const std::vector<Eigen::Vector2d>& pts) {
+  SweepCloud c;
+  c.width = static_cast<std::uint32_t>(pts.size());
+  for (const auto& p : pts) {
+    for (const float v : {float(p.x()), float(p.y()), 5.0f, 200.0f}) {
+      const auto* b = reinterpret_cast<const std::uint8_t*>(&v);
+      c.data.insert(c.data.end(), b, b + sizeof v);
+    }
+  }
+  return c;
 }
 
 double lineDist(const WallSegment& s, const Eigen::Vector2d& p) {
@@ -112,4 +148,73 @@ TEST(WallDetection, CornersSplitAndScatterIsNotAWall) {
   for (int i = 0; i < 40; ++i) scatter.emplace_back(5.0 * std::cos(i * 2.4), 7.0 * std::sin(i * 1.7));
   EXPECT_TRUE(extractWalls(scatter, cfg).empty());
   EXPECT_FALSE(planWallPath({}, {0, 0}, 0, cfg).ok);
+}
+
+TEST(WallDetection, DetectorReadsTheSweepCloudInAcquisitionOrder) {
+  const Eigen::Vector2d c[4] = {{0, 0}, {20, 0}, {20, 10}, {0, 10}};
+  std::vector<scenes::Wall> walls;
+  for (int i = 0; i < 4; ++i) walls.push_back({c[i], c[(i + 1) % 4]});
+  const auto pts = sweepPoints(walls, {6.0, 3.0}, 0.3, 0.05);
+  WallConfig cfg;
+  WallDetector det(cfg);
+  const SweepWalls r = det.detect(packSweep(pts).view());
+  ASSERT_EQ(r.error, CloudError::None) << r.message;
+  ASSERT_EQ(r.points.size(), pts.size());
+  // the same walls as from the points themselves (float32 in the cloud: within a millimetre)
+  const auto want = extractWalls(pts, cfg);
+  ASSERT_EQ(r.walls.size(), 4u);
+  ASSERT_EQ(r.walls.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    EXPECT_LT((r.walls[i].a - want[i].a).norm(), 1e-3);
+    EXPECT_LT((r.walls[i].b - want[i].b).norm(), 1e-3);
+  }
+  const WallPath p = det.plan(r.walls, {6.0, 3.0}, 0.0);
+  ASSERT_TRUE(p.ok);
+  EXPECT_NEAR((p.wp2 - p.wp1).norm(), cfg.spacing, 1e-9);
+  EXPECT_EQ(det.counters().total(), 0u);
+}
+
+TEST(WallDetection, DetectorCountsEmptyMalformedAndNonFiniteSweeps) {
+  const std::vector<scenes::Wall> walls = {{{8.0, -12.0}, {8.0, 12.0}}};
+  const auto pts = sweepPoints(walls, {0, 0}, 1.0);
+  WallDetector det{WallConfig{}};
+
+  // nothing detected: SonarTargets publishes a cloud of no points; no walls, no error
+  const SweepWalls empty = det.detect(packSweep({}).view());
+  EXPECT_EQ(empty.error, CloudError::None);
+  EXPECT_TRUE(empty.walls.empty());
+  EXPECT_EQ(det.counters().get("empty_sweep"), 1u);
+
+  const SweepCloud cloud = packSweep(pts);
+  CloudView v = cloud.view();
+  v.y.present = false;
+  SweepWalls r = det.detect(v);
+  EXPECT_EQ(r.error, CloudError::MissingXyz);
+  EXPECT_TRUE(r.walls.empty());
+  EXPECT_FALSE(r.message.empty());
+  v = cloud.view();
+  v.size -= 3;
+  EXPECT_EQ(det.detect(v).error, CloudError::SizeMismatch);
+  v = cloud.view();
+  v.x.datatype = std::uint8_t(FieldType::UInt8);
+  EXPECT_EQ(det.detect(v).error, CloudError::BadFieldType);
+  v = cloud.view();
+  v.width = 0;  // no points over a full buffer
+  EXPECT_EQ(det.detect(v).error, CloudError::Empty);
+  EXPECT_EQ(det.counters().get("missing_xyz"), 1u);
+  EXPECT_EQ(det.counters().get("size_mismatch"), 1u);
+  EXPECT_EQ(det.counters().get("bad_field"), 1u);
+  EXPECT_EQ(det.counters().get("empty_cloud"), 1u);
+
+  // NaN and infinite points are dropped and counted; the wall is still found from the rest
+  auto holed = pts;
+  holed[pts.size() / 3].x() = std::numeric_limits<double>::quiet_NaN();
+  holed[pts.size() / 2].y() = std::numeric_limits<double>::infinity();
+  r = det.detect(packSweep(holed).view());
+  EXPECT_EQ(r.error, CloudError::None);
+  EXPECT_EQ(r.non_finite, 2u);
+  EXPECT_EQ(r.points.size(), pts.size() - 2);
+  EXPECT_EQ(det.counters().get("non_finite_point"), 2u);
+  ASSERT_EQ(r.walls.size(), 1u);
+  EXPECT_LT(lineDist(r.walls[0], {8.0, 0.0}), 0.05);
 }
