@@ -425,7 +425,9 @@ void AuvStack::step() {
     }
     for (double s : usbl_->acceptedNow()) sup.heard(safety::Source::kUsbl, s);
     if (step_ % navigation_every_ == 0) {
-      control_.onFixLost(usbl_->status(t) == navigation::NavStatus::kFixLost);  // /auv/navigation/status
+      const bool fix_lost = usbl_->status(t) == navigation::NavStatus::kFixLost;  // /auv/navigation/status
+      control_.onFixLost(fix_lost);
+      if (cfg_.mission_enabled) mission_.onFixLost(fix_lost);
       if (auto e = usbl_->estimate(t)) navigate(*e, t);
     }
   } else if (out.odom) {  // the simulator's INS estimate: /auv/odom and its TF

@@ -196,15 +196,21 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
       // the nearer side lay beyond the AUV, and the run there touched it). Nor a detour (to its first corner, along
       // the box, on to the next waypoint) that passes an unboxed obstacle within the safety distance across: a
       // buoy's box reaching forward from behind the USV put the recovery's corner 2.7 m from the surfaced AUV beside
-      // it (evaluation seed 11000 run 116). That side goes last. (Every obstacle a detour passes, weighed alike,
-      // flipped transit detours from frame to frame: tuning seed 31, 24 collisions against 12.)
+      // it (evaluation seed 11000 run 116). Of two sides, the one with the lesser of these goes first: a run into an
+      // obstacle (2) is worse than a pass by an unboxed one (1). (Every obstacle a detour passes, weighed alike,
+      // flipped transit detours from frame to frame: tuning seed 31, 24 collisions against 12.) A run abeam away
+      // from an obstacle's centre is an escape, not a run into it: with the vehicle inside the obstacle's square
+      // both sides overlapped it, the tie kept the side chosen when the LiDAR had seen only a vessel's far end, and
+      // the run abeam there crossed its near corner (evaluation seed 17000 run 268, 2026-12-06).
       auto through = [&](SbbSide side) {
         const double e_to = side == SbbSide::kPort ? port : stbd;
         if (r.s_lo <= 0.0) {
           for (const auto& o : obs) {
             const Eigen::Vector2d q = f.toLeg(o.origin);
             const double h = std::max(std::abs(o.length), std::abs(o.width)) / 2.0 + p.corridor;
-            if (std::abs(q.x()) < h && q.y() - h < std::max(0.0, e_to) && q.y() + h > std::min(0.0, e_to)) return true;
+            if (std::abs(q.x()) < h && q.y() * e_to > 0.0 && q.y() - h < std::max(0.0, e_to) &&
+                q.y() + h > std::min(0.0, e_to))
+              return 2;
           }
         }
         // the way to the first box starts where the vehicle is (LOS resumes on the nearest leg: a USV already
@@ -216,12 +222,12 @@ SbbPlan planSbb(const std::vector<Eigen::Vector3d>& path, const Eigen::Vector2d&
           if (o.boxed) continue;
           const double h = std::max(std::abs(o.length), std::abs(o.width)) / 2.0 + p.safety_y;
           for (std::size_t i = 1; i < way.size(); ++i)
-            if (segmentDistance(way[i - 1], way[i], o.origin) < h) return true;
+            if (segmentDistance(way[i - 1], way[i], o.origin) < h) return 1;
         }
-        return false;
+        return 0;
       };
       SbbSide second = first == SbbSide::kPort ? SbbSide::kStarboard : SbbSide::kPort;
-      if (!kept_in_plan && through(first) && !through(second)) std::swap(first, second);
+      if (!kept_in_plan && through(first) > through(second)) std::swap(first, second);
       SbbSide chosen = SbbSide::kBlocked;
       for (SbbSide side : {first, second}) {
         const double e = side == SbbSide::kPort ? port : stbd;

@@ -222,7 +222,10 @@ void AuvMission::onSafetySurface(double t) {
 }
 
 bool AuvMission::stationary() const {
-  return (phase_ == AuvPhase::Surfaced || phase_ == AuvPhase::Recovered) && pose_ &&
+  // Not without a fix: an aColor at the surface lost its USBL fixes with the USV 12 m off, reckoned itself on its
+  // point while its hold drifted at 0.7 m/s before a 7.7 m/s wind, and the USV closed in onto it (evaluation seed
+  // 17000 run 463, 2026-12-06).
+  return (phase_ == AuvPhase::Surfaced || phase_ == AuvPhase::Recovered) && pose_ && !fix_lost_ &&
          ((pose_->head<2>() - hold_.head<2>()).norm() <= p_.station_radius || steady_);
 }
 

@@ -13,6 +13,7 @@
 #include <offshore_gnc/TargetArray.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/NavSatFix.h>
+#include <std_msgs/String.h>
 
 #include <cmath>
 #include <memory>
@@ -55,6 +56,7 @@ class AuvMissionNodelet : public nodelet::Nodelet {
     safety_sub_ = nh.subscribe("safety/state", 10, &AuvMissionNodelet::onSafety, this);
     usv_sub_ = nh.subscribe("/usv/mission/status", 10, &AuvMissionNodelet::onUsvStatus, this);  // relayed
     gps_sub_ = nh.subscribe("/auv/gps/fix", 10, &AuvMissionNodelet::onGps, this);  // at the surface (Girona500)
+    nav_status_sub_ = nh.subscribe("navigation/status", 1, &AuvMissionNodelet::onNavStatus, this);  // latched
     updater_ = std::make_unique<diagnostic_updater::Updater>(nh, getPrivateNodeHandle(), getName());
     updater_->setHardwareID("auv_mission");
     updater_->add("mission", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
@@ -105,6 +107,10 @@ class AuvMissionNodelet : public nodelet::Nodelet {
     if (f->status.status >= sensor_msgs::NavSatStatus::STATUS_FIX && std::isfinite(f->latitude) &&
         std::isfinite(f->longitude))
       mission_->onSurfaceFix(f->header.stamp.isZero() ? ros::Time::now().toSec() : f->header.stamp.toSec());
+  }
+
+  void onNavStatus(const std_msgs::String::ConstPtr& m) {
+    mission_->onFixLost(m->data == ros_util::nav_status::kFixLost);
   }
 
   void onSafety(const SafetyState::ConstPtr& s) {
@@ -162,7 +168,7 @@ class AuvMissionNodelet : public nodelet::Nodelet {
   std::unique_ptr<geo::LocalNed> frame_;
   mission::AuvPhase logged_ = mission::AuvPhase::Idle;
   ros::Publisher path_pub_, target_pub_, status_pub_;
-  ros::Subscriber targets_sub_, guidance_sub_, odom_sub_, safety_sub_, usv_sub_, gps_sub_;
+  ros::Subscriber targets_sub_, guidance_sub_, odom_sub_, safety_sub_, usv_sub_, gps_sub_, nav_status_sub_;
   ros::Timer timer_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
 };

@@ -109,6 +109,9 @@ class AuvMission {
   void onSafetySurface(double t);
   // A GPS fix at the surface came (the Girona500's /auv/gps/fix): its surface position is the GPS's, not the USBL's.
   void onSurfaceFix(double t) { surface_fix_t_ = t; }
+  // The navigation's fix lost (/auv/navigation/status fix_lost): its position is dead reckoning, and an aColor's
+  // hold drifts without a fix (drift_without_fix), so on its point or steady says nothing: not stationary.
+  void onFixLost(bool lost) { fix_lost_ = lost; }
 
   // The path guidance must follow now (the coverage, the hold, the ascent), once per change.
   std::optional<std::vector<Eigen::Vector3d>> takePath();
@@ -163,7 +166,7 @@ class AuvMission {
   double start_time_ = 0.0, detection_time_, first_tick_ = 0.0, found_t_ = 0.0, usv_t_ = -1e300, yaw_ = 0.0;
   double hold_heading_ = 0.0, on_station_since_, ascent_t_, surfaced_t_, ramp_t_ = 0.0, depth_ref_ = 0.0;
   double surface_fix_t_ = -1e300;
-  bool ticked_ = false, following_ = false, clearing_ = false, mind_usv_ = true, steady_ = false;
+  bool ticked_ = false, following_ = false, clearing_ = false, mind_usv_ = true, steady_ = false, fix_lost_ = false;
   std::deque<std::pair<double, Eigen::Vector2d>> surface_track_;  // at the surface, the last still_window of poses
   Counters counters_;
 };

@@ -245,6 +245,28 @@ TEST(Sbb, ADetourKeepsOffTheSideOfAnUnboxedObstacle) {
   EXPECT_TRUE(on_line.boxes.empty());
 }
 
+// The vehicle inside a vessel's square, the side kept from an earlier plan beyond the vessel: the run abeam there
+// crosses it, the other side's leads away from it (an escape, not a run into it) and is taken, even past an unboxed
+// AUV within the safety distance: a run into an obstacle is worse than a pass by one (evaluation seed 17000 run 268,
+// 2026-12-06: both sides counted "through", the tie kept the side across the vessel's near end).
+TEST(Sbb, ARunAbeamAwayFromAnObstacleIsTakenOverOneIntoIt) {
+  const SbbParams p = params();
+  const std::vector<V3> path{V3(0, 0, 0), V3(40, 0, 0)};
+  SbbObstacle vessel = buoy(2, 1, -5.5, 10.0);
+  const SbbPlan first = planSbb(path, V2(0, 0), {vessel}, p);
+  ASSERT_EQ(first.boxes.size(), 1u);
+  std::vector<SbbBox> kept_port = first.boxes;
+  kept_port[0].side = SbbSide::kPort;  // the side an earlier plan took
+  SbbObstacle auv = buoy(kUnboxedId, 6, 6, 1.5);
+  auv.boxed = false;
+  for (const auto& obstacles : {std::vector<SbbObstacle>{vessel}, std::vector<SbbObstacle>{vessel, auv}}) {
+    const SbbPlan plan = planSbb(path, V2(0, 0), obstacles, p, kept_port);
+    ASSERT_EQ(plan.boxes.size(), 1u) << obstacles.size();
+    EXPECT_EQ(plan.boxes[0].side, SbbSide::kStarboard) << obstacles.size();
+    EXPECT_GT(leastDistance(plan.path, vessel.origin), 5.0) << obstacles.size();
+  }
+}
+
 TEST(Sbb, NonFiniteObstaclesIgnored) {
   SbbObstacle o = buoy(1, std::nan(""), 0);
   const SbbPlan plan = planSbb({V3(0, 0, 0), V3(100, 0, 0)}, V2(0, 0), {o}, params());

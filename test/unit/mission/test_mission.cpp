@@ -413,6 +413,12 @@ TEST(AuvMission, ComesUpWhenTheUsvArrivesClearOfItAtTheBoundedRate) {
   EXPECT_DOUBLE_EQ(depths.back(), 0.0);
   EXPECT_EQ(m.phase(), AuvPhase::Surfaced);
   EXPECT_TRUE(m.stationary());
+  // the navigation's fix lost (an aColor's USBL replies gone at the surface): its point is reckoned, and the hold
+  // drifts; on it or not, not stationary until a fix comes again (evaluation seed 17000 run 463)
+  m.onFixLost(true);
+  EXPECT_FALSE(m.stationary());
+  m.onFixLost(false);
+  EXPECT_TRUE(m.stationary());
   m.onPose({29.5, 3, 0}, 0.0, 151.0);  // 1.5 m off its point: not stationary
   EXPECT_FALSE(m.stationary());
   EXPECT_NE(m.detail().find("(1.5 m off it); waiting"), std::string::npos) << m.detail();
