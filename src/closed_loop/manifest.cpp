@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <set>
 
 #include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"

@@ -1,6 +1,5 @@
 #include "offshore_gnc/docs/launch_block.h"
 
-#include <algorithm>
 #include <set>
 #include <utility>
 
