@@ -38,6 +38,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 from offshore_gnc import VEHICLES, report, scenario_check  # noqa: E402
 from offshore_gnc import radio as radio_link  # noqa: E402
+from offshore_gnc import vehicles  # noqa: E402
 from offshore_gnc.testing import MasterSet  # noqa: E402
 from offshore_gnc.testing.masters import free_port, kill_tree  # noqa: E402
 
@@ -80,8 +81,7 @@ def vehicle_configs(auv_model):
     """The vehicles' configs the stacks get (the launch files' defaults). They describe the vehicles only: the
     site's origin is the scenario's, which the launch files give every node (launch/site.launch). Returns
     vehicle -> file."""
-    return {"usv": os.path.join(REPO, "config", "usv.yaml"),
-            "auv": os.path.join(REPO, "config", "auv_%s.yaml" % auv_model)}
+    return {"usv": vehicles.vehicle_config("usv"), "auv": vehicles.vehicle_config("auv", auv_model)}
 
 
 def parse_args(argv=None):
@@ -94,7 +94,7 @@ def parse_args(argv=None):
     ap.add_argument("--free-running", action="store_true",
                     help="each simulator keeps its own clock at --rate (no shared lockstep time)")
     ap.add_argument("--max-sim-time", type=float, default=None, help="give up after this simulated time [s]")
-    ap.add_argument("--auv-model", default="girona500", choices=["girona500", "acolor"])
+    ap.add_argument("--auv-model", default=vehicles.auv_models()[0], choices=vehicles.auv_models())
     ap.add_argument("--auv-navigation", default="usbl", choices=["usbl", "ins"],
                     help="usbl (default): the AUV navigates on USBL fixes, depth, AHRS and DVL (the job carries the "
                          "USV's true pose to the AUV master's beacon simulator); ins: the simulator's INS-like "

@@ -10,6 +10,7 @@
 #include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/perception/sensor_frame.h"
+#include "offshore_gnc/sim/simulator_params.h"
 
 namespace offshore_gnc {
 namespace closed_loop {
@@ -48,29 +49,48 @@ perception::SonarBeamView viewOf(const sim::SonarBeamReading& b) {
   return v;
 }
 
-guidance::GuidanceParams readGuidance(const std::string& file) {
-  const YAML::Node y = loadYamlFile(file);
-  guidance::GuidanceParams g = guidance::GuidanceParams::preset(y["vehicle"] ? y["vehicle"].as<std::string>() : "usv");
-  readParamsYaml(y, guidance::GuidanceParams::table(), g, file);
+// A component's sources read in order through `t` (each over the one before, as its rosparam loads are).
+template <class P>
+void readSources(const std::vector<ParamSource>& sources, const ParamTable<P>& t, P& p) {
+  for (const auto& s : sources) readParamsYaml(s.yaml, t, p, s.name);
+}
+
+// The preset is the one the loaded `vehicle` names (the last source that sets it, as on the parameter server).
+guidance::GuidanceParams readGuidance(const std::vector<ParamSource>& sources) {
+  std::string vehicle = "usv";
+  for (const auto& s : sources)
+    if (s.yaml["vehicle"]) vehicle = s.yaml["vehicle"].as<std::string>();
+  guidance::GuidanceParams g = guidance::GuidanceParams::preset(vehicle);
+  readSources(sources, guidance::GuidanceParams::table(), g);
   return g;
 }
 
-// The files in order, each over the one before (the launch files' rosparam loads).
-control::ControlLoopParams readControl(const std::vector<std::string>& files) {
+control::ControlLoopParams readControl(const std::vector<ParamSource>& sources) {
   control::ControlLoopParams c;
-  for (const std::string& file : files) {
-    const YAML::Node y = loadYamlFile(file);
-    readParamsYaml(y, control::ControlLoopParams::table(), c, file);
-    if (c.vehicle == "usv") readParamsYaml(y, control::UsvControlParams::table(), c.usv, file);
-    else if (c.vehicle == "girona500") readParamsYaml(y, control::Girona500ControlParams::table(), c.girona500, file);
-    else readParamsYaml(y, control::AcolorControlParams::table(), c.acolor, file);
+  for (const auto& s : sources) {
+    readParamsYaml(s.yaml, control::ControlLoopParams::table(), c, s.name);
+    if (c.vehicle == "usv") readParamsYaml(s.yaml, control::UsvControlParams::table(), c.usv, s.name);
+    else if (c.vehicle == "girona500") readParamsYaml(s.yaml, control::Girona500ControlParams::table(), c.girona500, s.name);
+    else readParamsYaml(s.yaml, control::AcolorControlParams::table(), c.acolor, s.name);
   }
   return c;
 }
 
-safety::SupervisorConfig readSafety(const std::string& file, safety::SupervisorConfig preset) {
-  readParamsYaml(loadYamlFile(file), safety::SupervisorConfig::table(), preset, file);
-  return preset;
+// The supervisor's rules over the vehicle's preset, and its node's rate (as the SafetySupervisor nodelet reads them).
+void readSafety(const std::vector<ParamSource>& sources, safety::SupervisorConfig& cfg, double& rate) {
+  readSources(sources, safety::SupervisorConfig::table(), cfg);
+  safety::SupervisorNodeParams node;
+  readSources(sources, safety::SupervisorNodeParams::table(), node);
+  rate = node.rate;
+}
+
+// The simulator nodelet's seed and step.
+template <class Config>
+void readRun(const std::vector<ParamSource>& sources, Config& c) {
+  sim::RunParams run;
+  readSources(sources, sim::RunParams::table(), run);
+  c.seed = static_cast<std::uint64_t>(run.seed);
+  c.dt = run.dt;
 }
 
 // The decision reaches control as control::SupervisorAction (control does not depend on safety).
@@ -114,24 +134,22 @@ void StackSupervisor::tick(long step, double t, control::ControlLoop& control) {
 
 // ------------------------------------------------------------------------------------------------- USV
 UsvStackConfig loadUsvStack(const std::string& dir) {
+  const VehicleManifest m = VehicleManifest::load(dir, "usv");  // what usv.launch starts, with its files
   UsvStackConfig c;
-  const std::string vehicle = dir + "/usv.yaml";
-  const YAML::Node v = loadYamlFile(vehicle);
-  readParamsYaml(v, navigation::GpsNavigatorConfig::table(), c.navigation, vehicle);
-  readParamsYaml(v, sim::HullFootprint::table(), c.hull, vehicle);
+  readRun(m.sources("sim"), c.sim);
+  readSources(m.sources("navigation"), navigation::GpsNavigatorConfig::table(), c.navigation);
+  const std::string vehicle = m.vehicleConfigPath();
+  readParamsYaml(loadYamlFile(vehicle), sim::HullFootprint::table(), c.hull, vehicle);
   c.hull.validate();
-  const std::string lidar = dir + "/perception/lidar_usv.yaml";
-  const YAML::Node l = loadYamlFile(lidar);
-  readParamsYaml(l, perception::LidarConfig::table(), c.lidar, lidar);
+  const std::vector<ParamSource> lidar = m.sources("lidar_targets");
+  readSources(lidar, perception::LidarConfig::table(), c.lidar);
   perception::SensorFrameParams f;
-  readParamsYaml(l, perception::SensorFrameParams::table(), f, lidar);
+  readSources(lidar, perception::SensorFrameParams::table(), f);
   c.pose_timeout = f.tf_timeout;
-  c.guidance = readGuidance(dir + "/guidance/usv.yaml");
-  c.control = readControl({dir + "/control/usv.yaml"});
-  const std::string mission = dir + "/mission/usv.yaml";
-  readParamsYaml(loadYamlFile(mission), mission::UsvMissionParams::table(), c.mission, mission);
-  c.safety = readSafety(dir + "/safety/usv.yaml", safety::usvDefaults());  // as the nodelets read it
-  c.sim.seed = 1;  // sim_usv.launch's default
+  c.guidance = readGuidance(m.sources("guidance"));
+  c.control = readControl(m.sources("control"));
+  readSources(m.sources("mission"), mission::UsvMissionParams::table(), c.mission);
+  readSafety(m.sources("safety"), c.safety, c.safety_rate);
   return c;
 }
 
@@ -143,7 +161,7 @@ UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
       guidance_(cfg.guidance),
       control_(cfg.control),
       mission_(cfg.mission),
-      safety_(cfg.safety, cfg.sim.dt),
+      safety_(cfg.safety, cfg.sim.dt, cfg.safety_rate),
       guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
       mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)) {
@@ -292,45 +310,49 @@ void UsvStack::step() {
 
 // ------------------------------------------------------------------------------------------------- AUV
 AuvStackConfig loadAuvStack(const std::string& dir, const std::string& model, const std::string& scenario_file) {
-  if (model != "girona500" && model != "acolor")
-    throw ConfigError("vehicle_model '" + model + "' is not one of: girona500, acolor");
+  const VehicleManifest m = VehicleManifest::load(dir, "auv");  // what auv.launch starts, with its files
+  m.requireModel(model);
   AuvStackConfig c;
   c.model = model;
-  const std::string sonar = dir + "/perception/sonar_auv.yaml";
-  const YAML::Node s = loadYamlFile(sonar);
-  readParamsYaml(s, perception::SonarConfig::table(), c.sonar, sonar);
+  readRun(m.sources("sim", model), c.sim);
+  const std::vector<ParamSource> sonar = m.sources("sonar_targets", model);
+  readSources(sonar, perception::SonarConfig::table(), c.sonar);
   perception::SensorFrameParams f;
-  readParamsYaml(s, perception::SensorFrameParams::table(), f, sonar);
+  readSources(sonar, perception::SensorFrameParams::table(), f);
   c.pose_timeout = f.tf_timeout;
-  c.guidance = readGuidance(dir + "/guidance/" + model + ".yaml");
-  // as guidance_auv.launch with sim:=true: the simulated vehicle's own tuning over the vehicle's
-  c.control = readControl({dir + "/control/" + model + ".yaml", dir + "/control/" + model + "_sim.yaml"});
-  const std::string mission = dir + "/mission/auv.yaml";
-  const YAML::Node m = loadYamlFile(mission);
+  c.guidance = readGuidance(m.sources("guidance", model));
+  c.control = readControl(m.sources("control", model));
   c.mission.coverage = mission::CoverageArea();
-  readParamsYaml(m, mission::AuvMissionParams::table(), c.mission, mission);
+  const std::vector<ParamSource> mission = m.sources("mission", model);
+  readSources(mission, mission::AuvMissionParams::table(), c.mission);
   // as auv.launch: the scenario's auv/coverage when it has one, else the mission config's
   const YAML::Node sc = scenario_file.empty() ? YAML::Node() : loadYamlFile(scenario_file);
-  if (sc && yamlAt(sc, "auv/coverage").IsDefined())
+  if (sc && yamlAt(sc, "auv/coverage").IsDefined()) {
     readParamsYaml(sc, mission::CoverageArea::table(), c.mission.coverage, scenario_file, "auv/coverage/");
-  else
-    readParamsYaml(m, mission::CoverageArea::table(), c.mission.coverage, mission, "coverage/");
+  } else {
+    for (const auto& s : mission) readParamsYaml(s.yaml, mission::CoverageArea::table(), c.mission.coverage, s.name, "coverage/");
+  }
   c.mission.validate();
-  c.safety = readSafety(dir + "/safety/auv.yaml", safety::auvDefaults());
-  c.usbl = loadUsblNavigation(dir, model);
-  c.length = auvLength(dir, model);
-  c.sim.seed = 2;  // sim_auv.launch's default
+  readSafety(m.sources("safety", model), c.safety, c.safety_rate);
+  c.usbl = loadUsblNavigation(m, model);
+  c.usbl_seed = static_cast<unsigned>(c.usbl.beacon.seed);
+  c.length = auvLength(m, model);
   c.sim.auv = model == "acolor" ? models::AuvParams::aColor() : models::AuvParams::girona500();
   return c;
 }
 
 double auvLength(const std::string& dir, const std::string& model) {
+  const VehicleManifest m = VehicleManifest::load(dir, "auv");
+  return auvLength(m, model);
+}
+
+double auvLength(const VehicleManifest& m, const std::string& model) {
   struct Vehicle {
     double length = 1.5;
   } v;
   static const ParamTable<Vehicle> table =
       ParamTable<Vehicle>().number("vehicle/length", &Vehicle::length, 0.1, 50.0, "m", "L_AUV");
-  const std::string file = dir + "/auv_" + model + ".yaml";
+  const std::string file = m.vehicleConfigPath(model);
   readParamsYaml(loadYamlFile(file), table, v, file);
   return v.length;
 }
@@ -342,7 +364,7 @@ AuvStack::AuvStack(const sim::Scenario& scenario, const AuvStackConfig& cfg)
       guidance_(cfg.guidance),
       control_(cfg.control),
       mission_(cfg.mission),
-      safety_(auvSafety(cfg), cfg.sim.dt),
+      safety_(auvSafety(cfg), cfg.sim.dt, cfg.safety_rate),
       guidance_every_(stepsPer(cfg.guidance.rate, cfg.sim.dt)),
       control_every_(stepsPer(cfg.control.rate, cfg.sim.dt)),
       mission_every_(stepsPer(1.0 / cfg.mission_period, cfg.sim.dt)),

@@ -9,18 +9,27 @@ namespace offshore_gnc {
 namespace closed_loop {
 
 UsblNavigationConfig loadUsblNavigation(const std::string& dir, const std::string& model) {
+  return loadUsblNavigation(VehicleManifest::load(dir, "auv"), model);
+}
+
+UsblNavigationConfig loadUsblNavigation(const VehicleManifest& m, const std::string& model) {
   UsblNavigationConfig c;
-  const std::string usbl = dir + "/usbl/usbl.yaml";  // both the Usbl nodelet and its simulator load it
-  const YAML::Node u = loadYamlFile(usbl);
-  readParamsYaml(u, usbl::SessionParams::table(), c.session, usbl);
-  readParamsYaml(u, usbl::qualityLimitsTable(), c.limits, usbl);
-  readParamsYaml(u, usbl::mountingTable(), c.mount, usbl);
-  readParamsYaml(u, usbl::beaconSimTable(), c.beacon, usbl);
+  for (const auto& s : m.sources("usbl", model)) {  // the Usbl nodelet's
+    readParamsYaml(s.yaml, usbl::SessionParams::table(), c.session, s.name);
+    readParamsYaml(s.yaml, usbl::qualityLimitsTable(), c.limits, s.name);
+    readParamsYaml(s.yaml, usbl::mountingTable(), c.mount, s.name);
+  }
+  usbl::BeaconSimNodeParams node;
+  for (const auto& s : m.sources("usbl_sim", model)) {  // its simulator's
+    readParamsYaml(s.yaml, usbl::beaconSimTable(), c.beacon, s.name);
+    readParamsYaml(s.yaml, usbl::BeaconSimNodeParams::table(), node, s.name);
+  }
   c.beacon.remote_id = static_cast<std::uint8_t>(c.session.remote_id);
-  const std::string nav = dir + "/navigation/auv_" + model + ".yaml";
-  const YAML::Node n = loadYamlFile(nav);
-  readParamsYaml(n, navigation::AuvNavigatorConfig::table(), c.filter, nav);
-  readParamsYaml(n, navigation::AuvNavigationParams::table(), c.params, nav);
+  c.beacon.seed = static_cast<unsigned>(node.seed);  // the UsblSim nodelet's `seed` (its launch arg's default)
+  for (const auto& s : m.sources("navigation", model)) {  // the AuvNavigation nodelet's
+    readParamsYaml(s.yaml, navigation::AuvNavigatorConfig::table(), c.filter, s.name);
+    readParamsYaml(s.yaml, navigation::AuvNavigationParams::table(), c.params, s.name);
+  }
   return c;
 }
 

@@ -3,7 +3,12 @@
 // dynamic_reconfigure script) from the same tables. Tests compare the checked-in files with this output.
 //   param_docs > docs/parameters.md
 //   param_docs --cfg Guidance > cfg/Guidance.cfg   (and Control)
+// With --launch FILE, the launch file with its component block written from the vehicles' manifests
+// (config/vehicles/, docs/launch_block.h); --launch-files lists the launch files that have one.
+//   param_docs --launch launch/guidance_usv.launch > /tmp/g && mv /tmp/g launch/guidance_usv.launch
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,9 +17,11 @@
 #include "offshore_gnc/can/gateway.h"
 #include "offshore_gnc/closed_loop/stacks.h"
 #include "offshore_gnc/cola2/mapping.h"
+#include "offshore_gnc/common/param_yaml.h"
 #include "offshore_gnc/common/validate.h"
 #include "offshore_gnc/control/control_loop.h"
 #include "offshore_gnc/docs/cfg_script.h"
+#include "offshore_gnc/docs/launch_block.h"
 #include "offshore_gnc/geo/geo.h"
 #include "offshore_gnc/guidance/pipeline.h"
 #include "offshore_gnc/micron/session.h"
@@ -41,6 +48,37 @@
 using namespace offshore_gnc;
 
 namespace {
+
+const std::string kConfigDir = OFFSHORE_GNC_CONFIG_DIR;
+
+std::vector<closed_loop::VehicleManifest> manifests() {
+  std::vector<closed_loop::VehicleManifest> ms;
+  for (const auto& v : closed_loop::VehicleManifest::vehicles(kConfigDir))
+    ms.push_back(closed_loop::VehicleManifest::load(kConfigDir, v));
+  return ms;
+}
+
+// A column per value a choice parameter offers (the presets `vehicle` selects).
+template <class P>
+std::vector<std::pair<std::string, P>> perChoice(const ParamTable<P>& t, const std::string& name, P (*of)(const std::string&)) {
+  std::vector<std::pair<std::string, P>> columns;
+  for (const auto& s : t.specs())
+    if (s.name == name)
+      for (const auto& c : s.choices) columns.emplace_back(c, of(c));
+  return columns;
+}
+
+// Each vehicle's simulator run as its manifest's sim component sets it (the seeds' defaults).
+std::vector<std::pair<std::string, sim::RunParams>> runPerVehicle() {
+  std::vector<std::pair<std::string, sim::RunParams>> columns;
+  for (const auto& m : manifests()) {
+    sim::RunParams run;
+    for (const auto& s : m.sources("sim", m.models().empty() ? "" : m.models().front()))
+      readParamsYaml(s.yaml, sim::RunParams::table(), run, s.name);
+    columns.emplace_back(m.vehicle(), run);
+  }
+  return columns;
+}
 
 template <class P>
 void table(const char* title, const char* where, const ParamTable<P>& t,
@@ -82,7 +120,7 @@ void printParameters() {
       "A key in a vehicle's YAML file replaces the default shown here.\n\n");
   using G = guidance::GuidanceParams;
   table("Guidance", "`config/guidance/<vehicle>.yaml` -> the Guidance nodelet; `vehicle` selects the preset.",
-        G::table(), {{"usv", G::preset("usv")}, {"girona500", G::preset("girona500")}, {"acolor", G::preset("acolor")}});
+        G::table(), perChoice(G::table(), "vehicle", &G::preset));
   table("Control loop", "`config/control/<vehicle>.yaml` -> the Control nodelet (with the vehicle's own table below).",
         control::ControlLoopParams::table(), {{"default", control::ControlLoopParams()}});
   table("USV control", "`config/control/usv.yaml` (thesis Table 4.1, eq. 4.15-4.16).",
@@ -125,10 +163,9 @@ void printParameters() {
         usbl::BeaconSimNodeParams::table(), {{"default", usbl::BeaconSimNodeParams()}});
   table("Simulated GPS-compass", "the UsvSim nodelet's private `gps/...` parameters (docs/simulation.md); the "
         "ROS-free mission uses these defaults.", sim::GpsCompassConfig::table(), {{"default", sim::GpsCompassConfig()}});
-  sim::RunParams auv_run;
-  auv_run.seed = 2;
-  table("Simulator run", "the UsvSim and AuvSim nodelets' private parameters (docs/simulation.md).",
-        sim::RunParams::table(), {{"usv", sim::RunParams()}, {"auv", auv_run}});
+  table("Simulator run", "the UsvSim and AuvSim nodelets' private parameters (docs/simulation.md); each vehicle's "
+        "column as its manifest's `sim` sets it (`config/vehicles/`).",
+        sim::RunParams::table(), runPerVehicle());
   table("Simulated USV", "the UsvSim nodelet's private `lidar/...` parameters: the simulated MRS1000.",
         sim::UsvSimulation::Config::table(), {{"default", sim::UsvSimulation::Config()}});
   table("USV simulator", "the UsvSim nodelet's model and ROS names.", sim::UsvSimNodeParams::table(),
@@ -252,10 +289,23 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (argc == 3 && std::string(argv[1]) == "--cfg" && printCfg(argv[2])) return 0;
+    if (argc == 2 && std::string(argv[1]) == "--launch-files") {
+      for (const auto& f : docs::launchFiles(manifests())) std::printf("%s\n", f.c_str());
+      return 0;
+    }
+    if (argc == 3 && std::string(argv[1]) == "--launch") {
+      const std::string path = argv[2];
+      std::ifstream in(path);
+      if (!in) throw ConfigError("cannot read '" + path + "'");
+      const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+      const std::string name = path.substr(path.find_last_of('/') + 1);
+      std::fputs(docs::withLaunchBlock(text, manifests(), name).c_str(), stdout);
+      return 0;
+    }
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "param_docs: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: param_docs [--cfg Guidance|Control]\n");
+  std::fprintf(stderr, "usage: param_docs [--cfg Guidance|Control | --launch launch/FILE.launch | --launch-files]\n");
   return 2;
 }

@@ -2,8 +2,9 @@
 // One vehicle's whole stack as its launch file runs it in simulation (usv.launch / auv.launch, sim:=true), in
 // one process and without ROS: the simulator (plant + sensors), navigation, perception, the guidance pipeline,
 // the control loop and the mission, each the very class its nodelet runs, fed what the nodelet would be fed,
-// at the rate its timer or its sensor gives. The configuration comes from the same files the launch files load
-// (config/), read through the same parameter tables. Both vehicles on one clock make the ROS-free mission
+// at the rate its timer or its sensor gives. The configuration comes from the same files the launch files load,
+// as the vehicle's manifest lists them (config/vehicles/<vehicle>.yaml, closed_loop/manifest.h), read through the
+// same parameter tables. Both vehicles on one clock make the ROS-free mission
 // (closed_loop/mission.h). Each stack runs its safety supervisor as the SafetySupervisor nodelet does (the same
 // inputs, its decision overriding control), so a fault in the simulation's plan (sim config `faults`) is answered
 // here as in the ROS mission.
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "offshore_gnc/closed_loop/manifest.h"
 #include "offshore_gnc/closed_loop/usbl_navigation.h"
 #include "offshore_gnc/control/control_loop.h"
 #include "offshore_gnc/geo/geo.h"
@@ -56,7 +58,7 @@ class StackSupervisor {
 
 // ------------------------------------------------------------------------------------------------- USV
 struct UsvStackConfig {
-  sim::UsvSimulation::Config sim;     // sim_usv.launch: seed 1, the simulator's defaults
+  sim::UsvSimulation::Config sim;     // the manifest's sim: its seed's default, the simulator's defaults
   navigation::GpsNavigatorConfig navigation;  // config/usv.yaml
   sim::HullFootprint hull;            // config/usv.yaml: the outline that judges contact
   perception::LidarConfig lidar;      // config/perception/lidar_usv.yaml
@@ -66,12 +68,13 @@ struct UsvStackConfig {
   mission::UsvMissionParams mission;  // config/mission/usv.yaml
   // config/safety/usv.yaml: the supervisor; its region is also the mission's target check
   safety::SupervisorConfig safety = safety::usvDefaults();
+  double safety_rate = 10.0;          // the supervisor's steps (its node's `rate`) [Hz]
   double mission_period = 0.5;        // the mission nodelet's timer [s]
   bool mission_enabled = true;        // false: guidance follows setRoute()'s path (benchmarks, tests)
   bool use_truth = false;             // guidance and control on the true state (isolates the controller)
 };
-// Reads the files under `config_dir` (the package's config/) as usv.launch loads them; ConfigError names the
-// file and the key.
+// Reads the files under `config_dir` (the package's config/) that config/vehicles/usv.yaml lists, as usv.launch loads
+// them; ConfigError names the file and the key (or the manifest's entry).
 UsvStackConfig loadUsvStack(const std::string& config_dir);
 
 class UsvStack {
@@ -134,28 +137,32 @@ class UsvStack {
 // Girona500's navigator fuses its GPS at the surface the same way). The ROS mission has no such sensor yet.
 struct AuvStackConfig {
   std::string model = "girona500";    // girona500 | acolor (auv.launch vehicle_model)
-  sim::AuvSimulation::Config sim;     // sim_auv.launch: seed 2, the simulator's defaults, the model's params
+  sim::AuvSimulation::Config sim;     // the manifest's sim: its seed's default, the simulator's defaults, the model's params
   perception::SonarConfig sonar;      // config/perception/sonar_auv.yaml
   double pose_timeout = 0.1;          // tf_timeout
   guidance::GuidanceParams guidance;  // config/guidance/<model>.yaml
   control::ControlLoopParams control; // config/control/<model>.yaml
   mission::AuvMissionParams mission;  // config/mission/auv.yaml, the coverage from the scenario when it has one
   safety::SupervisorConfig safety = safety::auvDefaults();  // config/safety/auv.yaml
+  double safety_rate = 10.0;          // [Hz]
   // auv.launch navigation: usbl (the default: UsblNavigation, the USV's relayed GPS and heading placing the
   // fixes) or ins (the simulator's INS-like estimate, without USBL: the supervisor's USBL timeout is off)
   std::string navigation = "usbl";
   UsblNavigationConfig usbl;          // config/usbl/usbl.yaml, config/navigation/auv_<model>.yaml
-  unsigned usbl_seed = 1;             // the beacon simulator's (config/usbl/usbl.yaml seed)
+  unsigned usbl_seed = 1;             // the beacon simulator's (the manifest's usbl_sim seed)
   Eigen::Vector3d usv_gps_antenna{0, 0, -2.5};  // where the USV's GPS reports from (its simulator's gps/antenna)
   double length = 1.5;                // the vehicle config's vehicle/length: its size in the recovery figures [m]
   double mission_period = 0.5;
   bool mission_enabled = true;
   bool use_truth = false;
 };
+// As loadUsvStack, from config/vehicles/auv.yaml for `model` (one of its models); the mission's coverage from
+// `scenario_file` when it has one (as auv.launch loads the scenario into the mission).
 AuvStackConfig loadAuvStack(const std::string& config_dir, const std::string& model,
                             const std::string& scenario_file = "");
 // The AUV's length from its vehicle config (config/auv_<model>.yaml vehicle/length) [m].
 double auvLength(const std::string& config_dir, const std::string& model);
+double auvLength(const VehicleManifest& auv, const std::string& model);
 
 class AuvStack {
  public:

@@ -5,7 +5,7 @@
 // and heading at its time with the quality gates (usbl::Positioner, the Usbl nodelet's core), and the accepted
 // fixes fused with depth, the AHRS and the DVL or the commands' velocity (navigation::AuvNavigator, the AuvNavigation
 // nodelet's core), the estimate given at that nodelet's rate. Configured from the same files (config/usbl/usbl.yaml,
-// config/navigation/auv_<model>.yaml).
+// config/navigation/auv_<model>.yaml), as config/vehicles/auv.yaml lists them.
 #include <Eigen/Core>
 
 #include <cmath>
@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "offshore_gnc/closed_loop/manifest.h"
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/faults.h"
 #include "offshore_gnc/geo/geo.h"
@@ -38,7 +39,9 @@ struct UsblNavigationConfig {
   navigation::AuvNavigatorConfig filter;   // config/navigation/auv_<model>.yaml
   navigation::AuvNavigationParams params;
 };
+// The usbl, usbl_sim and navigation components of config/vehicles/auv.yaml (the manifest under config_dir).
 UsblNavigationConfig loadUsblNavigation(const std::string& config_dir, const std::string& model);
+UsblNavigationConfig loadUsblNavigation(const VehicleManifest& auv, const std::string& model);
 
 // One accepted or rejected fix, for the report's figures (what /auv/usbl/fix records).
 struct UsblFixRecord {

@@ -12,10 +12,12 @@ import os
 
 import yaml
 
+from offshore_gnc import vehicles
+
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 # The sites the repository ships a scenario for (config/scenarios/<name>.yaml; their origins are read from there).
 SHIPPED_SITES = ("pyhajarvi", "monterey", "hobart", "stanley", "taveuni", "svalbard")
-AUV_MODELS = ("girona500", "acolor")
+AUV_MODELS = vehicles.auv_models()
 OBSTACLE_TYPES = ("buoy", "vessel")
 # Tuning sweeps use seeds below this, reported (evaluation) figures seeds from it on: docs/campaign.md.
 EVALUATION_SEED_MIN = 1000
