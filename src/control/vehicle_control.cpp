@@ -40,7 +40,8 @@ const ParamTable<UsvControlParams>& UsvControlParams::table() {
       .number("turn_thrust", &P::turn_thrust, 0.0, 1.0, "",
               "least joystick surge while following a path with the bow > 30 deg off (the jets steer with thrust)")
       .number("turn_hold_angle", &P::turn_hold_angle, 0.0, kPi, "rad",
-              "from near rest a bow this far off the path's heading turns held on station (0: off)")
+              "from near rest a bow this far off the path's heading turns held on station where guidance finds "
+              "room for the hull's sweep (0: off)")
       .number("turn_hold_speed", &P::turn_hold_speed, 0.0, 5.0, "m/s", "near rest: surge below this");
   return t;
 }
@@ -111,7 +112,7 @@ JoystickOut UsvController::update(const VehicleState& s, const MotionReference& 
   double heading = r.heading;
   // The turn onto a path held on station (turn_hold_angle): the station's force, the path's heading.
   const double off = std::abs(angleDiff(heading, yaw_f_));
-  if (r.mode != ReferenceMode::kFollow || p_.turn_hold_angle <= 0.0) {
+  if (r.mode != ReferenceMode::kFollow || p_.turn_hold_angle <= 0.0 || !r.room_to_turn) {
     turning_ = false;
   } else if (!turning_ && off > p_.turn_hold_angle && u_f < p_.turn_hold_speed) {
     turning_ = true;

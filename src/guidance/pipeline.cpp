@@ -217,6 +217,8 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
   else if (!reject_reason_.empty() && out.los.mode == Mode::kHoldFault) out.los.status_text = reject_reason_;
   out.reference = referenceOf(out.los);
   if (out.reference.mode == ReferenceMode::kHold) keepHoldClear(t, out);
+  if (out.reference.mode == ReferenceMode::kFollow && s.position.allFinite())
+    out.reference.room_to_turn = roomToTurn(s.position.head<2>(), t);
   out.planned_changed = planned_changed_;
   out.boxes_changed = boxes_changed_;
   return true;
@@ -228,6 +230,14 @@ bool GuidancePipeline::finalRunBlocked(const Eigen::Vector2d& from, double t) co
   for (const SbbObstacle& o : obstacles(t))
     if (o.boxed && segmentDistance(from, to, o.origin) < 0.5 * std::max(o.length, o.width) + reach) return true;
   return false;
+}
+
+bool GuidancePipeline::roomToTurn(const Eigen::Vector2d& at, double t) const {
+  // every obstacle, boxed or not: the surfaced AUV beside the recovery's first leg is unboxed
+  const double sweep = hull_.longest() + p_.sbb.hold_clearance;
+  for (const SbbObstacle& o : obstacles(t))
+    if ((o.origin - at).norm() < 0.5 * std::max(o.length, o.width) + sweep) return false;
+  return true;
 }
 
 void GuidancePipeline::keepHoldClear(double t, GuidanceOutput& out) {

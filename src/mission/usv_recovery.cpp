@@ -144,7 +144,15 @@ void UsvMission::planRecovery(double t) {
   // (The mission's own legs beside the AUV, 9.3 m off, were ordinary waypoints:
   // guidance's 16 m circle of acceptance cut them, and in the evaluation campaign the hull touched the AUV in 6 of
   // 100 runs, 2026-12-05.) Only then: a box behind the USV merged with a shore's boxes and blocked the way.
-  round_auv_ = segmentDistance(u, run_in_, auv) < (recovery_point_ - auv).norm();
+  // Nor when the way leads away from the AUV (it lies abreast of or behind the way's start: guidance's room to turn
+  // keeps the swing off it), nor when it passes farther than the hull's sweep and recovery_clearance from its extent:
+  // with transit margins (sbb/safety_x, safety_y) the box beside a way 7-9 m off the AUV left too little room to a
+  // buoy's or a vessel's on the other side, and guidance went 20-30 m out round their far side and back through them
+  // (evaluation seed 18000 runs 122, 186).
+  const Eigen::Vector2d way = run_in_ - u;
+  const bool closes = (auv - u).dot(way) > 0.0;
+  const double pass = hull_.longest() + p_.recovery_clearance + 0.5 * p_.auv_extent;
+  round_auv_ = closes && segmentDistance(u, run_in_, auv) < std::min(pass, (recovery_point_ - auv).norm());
   std::vector<Eigen::Vector2d> path;
   for (const auto& w : guidance::straightLine({u.x(), u.y(), 0.0}, {run_in_.x(), run_in_.y(), 0.0}, p_.waypoint_spacing))
     path.push_back(w.head<2>());

@@ -62,7 +62,11 @@ const ParamTable<AuvNavigatorConfig>& AuvNavigatorConfig::table() {
               "velocity uncertainty when the first fix initialises the filter")
       .degrees("heading_bias_sigma_deg", &P::heading_bias_sigma, 0.01, 45.0,
                "the AHRS heading's bias (a filter state): standard deviation, first-order Markov")
-      .number("heading_bias_tau", &P::heading_bias_tau, 1.0, 1e6, "s", "the heading bias: correlation time");
+      .number("heading_bias_tau", &P::heading_bias_tau, 1.0, 1e6, "s", "the heading bias: correlation time")
+      .number("surface_depth", &P::surface_depth, 0.0, 100.0, "m",
+              "within this of the surface the wind sets the hull: the drift is re-learnt once on arrival (0: off)")
+      .number("surface_drift_sigma", &P::surface_drift_sigma, 0.0, 10.0, "m/s",
+              "arriving at the surface, the current's standard deviation grows by this (the wind's leeway)");
   return t;
 }
 
@@ -188,6 +192,10 @@ bool AuvNavigator::apply(Filter& f, const Input& in, bool first) {
       H(0, kPos + 2) = 1.0;
       update<1>(f, H, Eigen::Matrix<double, 1, 1>(in.a - f.x(2)),
                 Eigen::Matrix<double, 1, 1>(cfg_.depth_sigma * cfg_.depth_sigma));
+      const bool up = f.x(2) < cfg_.surface_depth;
+      const double leeway = cfg_.surface_drift_sigma;
+      if (up && !f.at_surface) f.P.block<2, 2>(kCur, kCur) += Eigen::Matrix2d::Identity() * leeway * leeway;
+      f.at_surface = up;
       return true;
     }
     case Kind::kDvl: {

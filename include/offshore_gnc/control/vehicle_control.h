@@ -43,7 +43,8 @@ struct UsvControlParams {
   // Turning onto a path from near rest (slower than turn_hold_speed) with the bow more than turn_hold_angle off:
   // dynamic positioning holds the boat where the turn began until the bow is within a quarter of that angle, then
   // it drives. Turning unheld, the field day's wind and current set the boat 2 m off the path's start before it
-  // had way on (the transit's largest cross-track). 0: off.
+  // had way on (the transit's largest cross-track). Only where guidance finds room for the hull's sweep
+  // (MotionReference::room_to_turn): held beside a surfaced AUV, the swinging hull touched it. 0: off.
   double turn_hold_angle = 0.0;  // [rad]
   double turn_hold_speed = 0.3;  // [m/s]
   double dt = 0.1;                                       // control period [s] (from the control rate)

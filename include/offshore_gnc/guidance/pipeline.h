@@ -92,6 +92,9 @@ class GuidancePipeline {
   // Dynamic positioning runs straight to its point and plans round nothing: the path's last point is taken on
   // final_radius only when that run keeps the hull's reach (at least the corridor) clear of every boxed obstacle.
   bool finalRunBlocked(const Eigen::Vector2d& from, double t) const;
+  // The hull swinging round on station at `at` keeps sbb/hold_clearance from every obstacle (MotionReference's
+  // room_to_turn).
+  bool roomToTurn(const Eigen::Vector2d& at, double t) const;
 
   GuidanceParams p_;
   LosGuidance los_;

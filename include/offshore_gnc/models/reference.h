@@ -17,6 +17,9 @@ struct MotionReference {
   double depth = 0.0;                         // AUV depth [m]
   double path_angle = 0.0;                    // chi_p of the active leg [rad]
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // kHold: the hold point; kFollow: the projection on the leg
+  // kFollow: nothing guidance knows of lies within the hull's sweep about where the vehicle is, so control may hold
+  // it there while it turns onto the path (UsvControlParams::turn_hold_angle)
+  bool room_to_turn = false;
 
   bool valid() const {
     return std::isfinite(heading) && std::isfinite(surge) && std::isfinite(path_angle) && point.head<2>().allFinite();

@@ -41,6 +41,11 @@ struct AuvNavigatorConfig {
   double init_velocity_sigma = 1.0;   // velocity uncertainty at (re-)initialisation [m/s]
   double heading_bias_sigma = 0.035;  // the AHRS heading's bias: standard deviation (first-order Markov) [rad]
   double heading_bias_tau = 1800.0;   // and its correlation time [s]
+  // Coming up within surface_depth, the wind sets the exposed hull: the drift learnt at depth no longer holds, and
+  // the current's variance grows by surface_drift_sigma^2 once (an aColor's estimate stood still while the wind
+  // drifted it 0.45 m/s, and the gate then refused the true fixes 14 m off). 0: off.
+  double surface_depth = 0.5;         // [m]
+  double surface_drift_sigma = 0.5;   // [m/s]
   static const ParamTable<AuvNavigatorConfig>& table();
 };
 
@@ -110,6 +115,7 @@ class AuvNavigator {
     double heading_t = -1e300, dvl_t = -1e300, fix_t = -1e300;
     int rejects_in_row = 0;
     int agreeing = 0;  // fixes accepted since the latest (re-)initialisation, that one included
+    bool at_surface = false;  // within surface_depth (its drift re-learnt once on arrival)
     // The innovations of the latest gated fixes in a row (ring by rejects_in_row) and their variance: a
     // re-initialisation needs them to agree, i.e. the estimate is off, not the fixes scattered.
     std::array<Eigen::Vector4d, 8> streak{};

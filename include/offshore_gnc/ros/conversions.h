@@ -110,6 +110,7 @@ inline MotionReference referenceFromStatus(const GuidanceStatus& g) {
   r.depth = g.desired_depth;
   r.path_angle = g.path_angle;
   r.point = Eigen::Vector3d(g.reference_point.x, g.reference_point.y, g.reference_point.z);
+  r.room_to_turn = g.reference_room_to_turn;
   return r;
 }
 
@@ -124,6 +125,7 @@ inline void fillReference(const MotionReference& r, GuidanceStatus& g) {
   g.reference_point.x = r.point.x();
   g.reference_point.y = r.point.y();
   g.reference_point.z = r.point.z();
+  g.reference_room_to_turn = r.room_to_turn;
 }
 
 // /auv/navigation/status (std_msgs/String, latched): the AUV navigation's state (navigation::NavStatus), written by

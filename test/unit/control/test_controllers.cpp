@@ -84,6 +84,23 @@ TEST(Controllers, UsvTurnsTowardTheReferenceAcrossPlusMinusPi) {
   EXPECT_LE(std::abs(j.surge), 1.0);
 }
 
+TEST(Controllers, UsvTurnsHeldOnStationOnlyWhereGuidanceFindsRoom) {
+  // At rest with the path astern: held while it turns where guidance finds room for the hull's sweep, unheld where
+  // it does not (a surfaced AUV beside the boat: the swinging hull touched it).
+  UsvControlParams p;
+  p.turn_hold_angle = 1.0;
+  for (const bool room : {false, true}) {
+    UsvController usv(p);
+    VehicleState s;
+    s.yaw = 0.0;
+    MotionReference r = follow(kPi, 1.0);
+    r.point = Eigen::Vector3d(-1.0, 0.0, 0.0);
+    r.room_to_turn = room;
+    for (int i = 0; i < 10; ++i) usv.update(s, r);
+    EXPECT_EQ(usv.counters().get("turns_held"), room ? 1u : 0u) << (room ? "room" : "no room");
+  }
+}
+
 TEST(Controllers, AcolorPwmChannels) {
   AcolorController ac;
   VehicleState s;

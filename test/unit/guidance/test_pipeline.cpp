@@ -177,6 +177,29 @@ TEST(GuidancePipeline, KnownObstaclesArePlannedRoundUntilWithdrawn) {
   EXPECT_EQ(g.counters().get("bad_obstacles"), 1u);
 }
 
+// Control may hold the boat on station while it turns onto the path only where nothing guidance knows of lies within
+// the hull's sweep (its longest reach) and sbb/hold_clearance: the surfaced AUV beside the recovery's first leg counts
+// though no box is planned round it.
+TEST(GuidancePipeline, RoomToTurnOnlyWhereTheHullsSweepIsClear) {
+  GuidancePipeline g(GuidanceParams::preset("usv"));
+  g.setHullReach({5.3, 2.7, 1.3});
+  GuidanceOutput o;
+  g.setPath(route());
+  g.setState(at(10, 0, kPi), 0.0);
+  ASSERT_TRUE(g.update(0.1, 0.1, o));
+  ASSERT_EQ(o.reference.mode, ReferenceMode::kFollow);
+  EXPECT_TRUE(o.reference.room_to_turn) << "open water";
+  SbbObstacle auv = buoy(10, -8.0);  // abeam: 8 m off, its extent 0.6 m; the sweep 5.3 m + hold_clearance 3 m
+  auv.id = 99;
+  g.setKnownObstacles({auv});
+  ASSERT_TRUE(g.update(0.2, 0.1, o));
+  EXPECT_FALSE(o.reference.room_to_turn) << "the AUV within the sweep";
+  auv.origin = {10, -9.5};
+  g.setKnownObstacles({auv});
+  ASSERT_TRUE(g.update(0.3, 0.1, o));
+  EXPECT_TRUE(o.reference.room_to_turn) << "the AUV beyond the sweep";
+}
+
 TEST(GuidancePipeline, BadInputIsRefusedWithAReason) {
   GuidancePipeline g(GuidanceParams::preset("usv"));
   GuidanceOutput o;

@@ -772,6 +772,25 @@ TEST(UsvMission, TellsGuidanceOfTheAuvOnTheWayToTheRunInBoxedWhenTheWayPassesClo
   EXPECT_TRUE(m.keepClear().empty());
 }
 
+// The AUV is boxed only when the way to the run-in closes on it within the hull's sweep and recovery_clearance of its
+// extent (5.3 + 3 + 0.75 m): with transit margins the box beside a way 7-9 m off it left too little room to a buoy's
+// on the other side, and guidance went 20-30 m out round the buoy's far side (evaluation seed 18000 runs 122, 186).
+TEST(UsvMission, BoxesTheAuvOnlyWhereTheWayToTheRunInClosesOnIt) {
+  auto boxedFrom = [](const Eigen::Vector2d& usv) {
+    UsvMission m;
+    arrived(m);
+    m.onPose(usv, -kPi / 2, 160.0);
+    m.onAuvStatus(AuvPhase::Surfaced, {50, 0, 0}, true, 161.0);
+    const auto p = m.takePath();
+    EXPECT_TRUE(p && (p->back() - Eigen::Vector2d(50, 19.3)).norm() < 1e-9);  // the run-in, east of the AUV
+    const auto keep = m.keepClear();
+    return keep.size() == 1u && keep[0].boxed;
+  };
+  EXPECT_TRUE(boxedFrom({38, -12}));   // the way passes it 6.9 m off
+  EXPECT_FALSE(boxedFrom({33, -12}));  // 9.2 m off (the recovery point's 9.3 m boxed it before)
+  EXPECT_FALSE(boxedFrom({54, 5}));    // 6.4 m off but behind the way's start: the way leads away from it
+}
+
 TEST(UsvMission, WithoutATargetGoesStraightToRecovery) {
   UsvMission m;
   m.onPose({0, 0}, 0.0, 0.0);

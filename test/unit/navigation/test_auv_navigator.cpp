@@ -426,6 +426,39 @@ TEST(AuvNavigator, TakesTheSwayOfAHoldsThrustFromTheCommands) {
   EXPECT_GT(without, 2.0 * with);
 }
 
+// 6d. aColor coming up: held at 5 m in a 0.1 m/s current, then surfacing, where the wind sets the hull 0.4 m/s more
+// (its commands still say "still in the water"), and the fixes drop out for 24 s just then (a dropout burst).
+// Arriving at the surface the drift is re-learnt (surface_drift_sigma): the fixes after the gap are taken, not
+// gated as outliers against an estimate that stood still.
+TEST(AuvNavigator, ArrivingAtTheSurfaceTheWindsDriftIsLearntAfresh) {
+  auto run = [](double leeway_sigma, double& error_after, std::size_t& gated) {
+    AuvNavigatorConfig cfg;
+    cfg.surface_drift_sigma = leeway_sigma;
+    AuvNavigator nav(cfg);
+    TrackSim sim;
+    sim.use_dvl = false;
+    sim.u = sim.cmd_surge = 0.0;
+    sim.current = Eigen::Vector2d(0.1, 0.0);
+    sim.depth = [](double t) { return t < 200.0 ? 5.0 : std::max(0.0, 5.0 - 0.5 * (t - 200.0)); };
+    sim.fixes_on = [](double t) { return t < 216.0 || t > 240.0; };
+    sim.run(nav, 210.0);
+    sim.current = Eigen::Vector2d(0.1, 0.4);  // at the surface: the current and the wind's leeway
+    sim.run(nav, 250.0);
+    error_after = (nav.estimate(250.0).position - sim.truth.p).head<2>().norm();
+    gated = nav.counters().get("fix_rejected_gate");
+  };
+  double with, without;
+  std::size_t gated_with, gated_without;
+  run(0.5, with, gated_with);
+  run(0.0, without, gated_without);
+  std::printf("at the surface, 10 s after the gap: %.2f m off (%zu gated) re-learning the drift, %.2f m (%zu) not\n",
+              with, gated_with, without, gated_without);
+  EXPECT_EQ(gated_with, 0u);
+  EXPECT_LT(with, 3.0);
+  EXPECT_GT(gated_without, 0u);
+  EXPECT_GT(without, 2.0 * with);
+}
+
 // 7. Non-finite input of every kind is refused and counted; the state stays finite.
 TEST(AuvNavigator, RefusesNonFiniteInput) {
   AuvNavigator nav;
@@ -490,7 +523,7 @@ TEST(AuvNavigator, StatusAndClockGoingBack) {
 // 8. Every parameter in the table; an out-of-range one is refused by the constructor.
 TEST(AuvNavigator, ConfigTableRefusesOutOfRange) {
   const auto& t = AuvNavigatorConfig::table();
-  EXPECT_EQ(t.specs().size(), 18u);
+  EXPECT_EQ(t.specs().size(), 20u);
   ASSERT_NE(t.find("gate_chi2"), nullptr);
   EXPECT_NO_THROW(AuvNavigator{AuvNavigatorConfig{}});
   AuvNavigatorConfig c;
