@@ -64,9 +64,9 @@ const ParamTable<AuvNavigatorConfig>& AuvNavigatorConfig::table() {
                "the AHRS heading's bias (a filter state): standard deviation, first-order Markov")
       .number("heading_bias_tau", &P::heading_bias_tau, 1.0, 1e6, "s", "the heading bias: correlation time")
       .number("surface_depth", &P::surface_depth, 0.0, 100.0, "m",
-              "within this of the surface the wind sets the hull: the drift is re-learnt once on arrival (0: off)")
+              "within this of the surface the wind sets the hull: the drift is re-learnt once on arrival")
       .number("surface_drift_sigma", &P::surface_drift_sigma, 0.0, 10.0, "m/s",
-              "arriving at the surface, the current's standard deviation grows by this (the wind's leeway)");
+              "arriving at the surface, the current's standard deviation grows by this (the wind's leeway; 0: off)");
   return t;
 }
 

@@ -16,6 +16,7 @@
 
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/models/state.h"
 #include "offshore_gnc/guidance/los.h"
 #include "offshore_gnc/guidance/sbb.h"
 #include "offshore_gnc/safety/region.h"
@@ -61,7 +62,7 @@ struct AuvMissionParams {
   double hold_timeout = 600.0;       // holding this long without the USV's arrival: ascend anyway [s]
   double usv_timeout = 30.0;         // holding without the USV's status this long (link lost, stack dead): ascend [s]
   double ascent_rate = 0.1;          // the depth reference rises at most this fast [m/s]
-  double surface_depth = 0.5;        // shallower than this the AUV is at the surface [m]
+  double surface_depth = kAuvSurfaceDepth;  // shallower than this the AUV is at the surface [m]
   double surface_clearance = 10.0;   // surface at least this far from where the USV holds or is bound [m]
   // Ascending, the depth is held while the USV itself (its reported position, not its station) is closer than
   // this: a USV carried off its station by a strong set came over the rising Girona500 (evaluation seed 5000 run 13,

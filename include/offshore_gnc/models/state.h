@@ -8,6 +8,10 @@
 
 namespace offshore_gnc {
 
+// Shallower than this an AUV is at the surface: the default of its mission's surface_depth (SURFACED) and of its
+// navigation's (where the wind starts to set the hull), one fact for both. [m]
+constexpr double kAuvSurfaceDepth = 0.5;
+
 struct VehicleState {
   double t = 0.0;                                       // simulated time [s]
   Eigen::Vector3d position = Eigen::Vector3d::Zero();   // eta_1 = (north, east, down) [m]

@@ -15,6 +15,7 @@
 
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
+#include "offshore_gnc/models/state.h"
 
 namespace offshore_gnc {
 namespace navigation {
@@ -43,9 +44,9 @@ struct AuvNavigatorConfig {
   double heading_bias_tau = 1800.0;   // and its correlation time [s]
   // Coming up within surface_depth, the wind sets the exposed hull: the drift learnt at depth no longer holds, and
   // the current's variance grows by surface_drift_sigma^2 once (an aColor's estimate stood still while the wind
-  // drifted it 0.45 m/s, and the gate then refused the true fixes 14 m off). 0: off.
-  double surface_depth = 0.5;         // [m]
-  double surface_drift_sigma = 0.5;   // [m/s]
+  // drifted it 0.45 m/s, and the gate then refused the true fixes 14 m off). surface_drift_sigma 0: off.
+  double surface_depth = kAuvSurfaceDepth;  // [m]
+  double surface_drift_sigma = 0.5;         // [m/s]
   static const ParamTable<AuvNavigatorConfig>& table();
 };
 
