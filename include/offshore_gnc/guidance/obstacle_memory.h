@@ -22,17 +22,18 @@ namespace guidance {
 struct ObstacleMemoryParams {
   double timeout = 5.0;          // no frame for this long: nothing is planned round (the sensor is gone) [s]
   double memory = 300.0;         // one out of the sensor's view is kept this long after it was last seen [s]
-  int confirm_frames = 5;        // ... when it was seen in this many frames (spray and clutter come once)
+  int confirm_frames = 5;        // ... when it was seen in this many frames (spray and clutter come once: clear_time)
   double match_gap = 1.0;        // a target this close to a remembered obstacle's extent is that obstacle [m]
   double extent_hold = 0.0;      // a target seen again keeps the largest extent it had over this long (0: each
                                  // frame's own). A vessel's LiDAR cluster shrank from 3.5 m to an edge's 0.1 m and
                                  // back frame by frame, merging its box with the next and splitting it, and the
                                  // detour flipped sides (tuning seed 31 run 286); 10 s helped there, but with
                                  // keep_side put the hull on the AUV in pyhajarvi_map.yaml: shipped off [s]
-  double clear_time = 2.0;       // one in the sensor's view but not in the frame is dropped after missing this long
-                                 // (0: at the first such frame). A low buoy drops out of the lowest layer's frames
-                                 // now and then as the boat pitches; dropped at once, the detour round it went and
-                                 // came back scan by scan (tuning seed 32 run 274: the hull on it) [s]
+  double clear_time = 2.0;       // one in the sensor's view but not in the frame, or one not yet confirmed, is
+                                 // dropped after missing this long (0: at the first such frame). A low buoy drops out
+                                 // of the lowest layer's frames now and then as the boat pitches; dropped at once, the
+                                 // detour round it went and came back scan by scan (tuning seed 32 run 274: the hull
+                                 // on it) [s]
   double sensor_ahead = 1.5;     // the sensor ahead of the reference point (sim lidar/mount: on the bow) [m]
   double sensor_aperture = deg2rad(275.0);  // its horizontal field of view, centred on the bow (275 deg) [rad]
   double sensor_near = 12.0;     // nearer than this to the sensor a low object passes under its lowest layer or

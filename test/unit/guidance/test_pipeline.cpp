@@ -315,7 +315,7 @@ TEST(ObstacleMemory, KeepsWhatTheSensorCannotSeeAndDropsWhatItLooksAtAndMisses) 
   EXPECT_EQ(m.active(30.0).size(), 1u);
   m.update({}, {20, -3}, 0.0, 20.4 + p.memory + 1.0);
   EXPECT_TRUE(m.active(20.4 + p.memory + 1.0).empty());
-  // seen once (spray), then astern: not kept
+  // seen once (spray), then astern: not kept (clear_time 0 here)
   m.update({buoy(20, 0)}, here, 0.0, 400.0);
   m.update({}, {32, 0}, 0.0, 401.0);
   EXPECT_TRUE(m.active(401.0).empty());
@@ -345,10 +345,28 @@ TEST(ObstacleMemory, AnObstacleInViewIsDroppedOnlyWhenMissedForClearTime) {
   EXPECT_EQ(m.active(5.9).size(), 1u);
   m.update({}, here, 0.0, 6.0);  // missed in view for 2 s: gone
   EXPECT_TRUE(m.active(6.0).empty());
-  // a target seen once (spray) is dropped at its first miss all the same
+  // a target seen once (spray), then out of view: kept only for clear_time, not for obstacle_memory
   m.update({buoy(30, 0)}, here, 0.0, 7.0);
-  m.update({}, here, 0.0, 7.1);
-  EXPECT_TRUE(m.active(7.1).empty());
+  m.update({}, here, kPi, 7.1);
+  EXPECT_EQ(m.active(7.1).size(), 1u);
+  m.update({}, here, kPi, 9.1);
+  EXPECT_TRUE(m.active(9.1).empty());
+}
+
+// A low buoy 25 m off comes in one frame of three as the boat pitches at rest: it is planned round in every frame
+// between (the detour came and went 32 times in 14 s when each miss dropped it before it was confirmed), and its
+// count goes on through the misses, so it is confirmed and kept when the boat has passed it.
+TEST(ObstacleMemory, AFlickeringTargetIsKeptThroughItsMissesAndConfirmed) {
+  ObstacleMemoryParams p;  // clear_time 2 s, confirm_frames 5
+  ObstacleMemory m(p);
+  const Eigen::Vector2d here(0, 0);
+  for (int i = 0; i < 15; ++i) {
+    const double t = 0.08 * i;  // 12.5 Hz
+    m.update(i % 3 == 0 ? std::vector<SbbObstacle>{buoy(25, 0)} : std::vector<SbbObstacle>{}, here, 0.0, t);
+    EXPECT_EQ(m.active(t).size(), 1u) << "frame " << i;
+  }
+  m.update({}, {40, 0}, 0.0, 5.0);  // passed it: astern, kept as a confirmed obstacle
+  EXPECT_EQ(m.active(5.0).size(), 1u);
 }
 
 // A vessel's cluster shrinks to the edge the LiDAR sees for a few frames: it keeps its largest extent for
