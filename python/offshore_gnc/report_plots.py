@@ -18,7 +18,8 @@ def _plots(out, sc, usv_track, auv_track, u, a, detected, usv_xte, auv_xte, auv_
         fig, (ax, zoom) = plt.subplots(1, 2, figsize=(13, 7.5), gridspec_kw={"width_ratios": [1.6, 1]})
     else:
         fig, ax = plt.subplots(figsize=(8, 8))
-    for ob in sc.get("obstacles", []) or []:
+    # what stands still; a vessel under way (course_deg or track, issue 33) has no one place to draw (not drawn yet)
+    for ob in [o for o in sc.get("obstacles", []) or [] if "course_deg" not in o and "track" not in o]:
         ax.add_patch(Circle((ob["east"], ob["north"]), float(ob.get("radius", 0.5)), color="red", alpha=0.6))
     if u["/usv/guidance/safety_boxes"]:
         for box in u["/usv/guidance/safety_boxes"][-1][1].boxes:

@@ -264,7 +264,7 @@ MissionResult runMission(const MissionConfig& cfg) {
     if (step % 5 == 0) {  // the hull against every true shape, a fault's obstacle included, and the AUV, at 20 Hz
       const auto& fault = usv.simulation().faultObstacle();
       std::string what;
-      const double c = sim::hullClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, cfg.scenario.world,
+      const double c = sim::hullClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, cfg.scenario.world, t,
                                           fault ? std::vector<sim::Vessel>{*fault} : std::vector<sim::Vessel>{}, &what);
       if (c < res.min_clearance_m) {
         res.min_clearance_m = c;

@@ -94,7 +94,8 @@ int main(int argc, char** argv) {
     readParamsYaml(loadYamlFile(vehicle), sim::HullFootprint::table(), hull, vehicle);
     hull.validate();
     const auto usv = readTrack(track);
-    for (const auto& r : usv) f.min_clearance_m = std::min(f.min_clearance_m, sim::hullClearance(hull, {r[1], r[2]}, r[3], sc.world));
+    for (const auto& r : usv)  // the scenario's vessels where they were at the sample's time
+      f.min_clearance_m = std::min(f.min_clearance_m, sim::hullClearance(hull, {r[1], r[2]}, r[3], sc.world, r[0]));
     // the hull against the AUV: each USV sample with the AUV's nearest in time (both bags on the one simulated clock)
     double recovery_distance = NAN;
     if (!auv_track.empty()) {

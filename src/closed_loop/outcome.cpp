@@ -41,7 +41,7 @@ double auvClearance(const sim::HullFootprint& hull, const Eigen::Vector2d& usv_n
   b.centre = auv_ne;
   b.radius = 0.5 * auv_length;
   w.buoys.push_back(b);
-  return sim::hullClearance(hull, usv_ne, usv_yaw, w);
+  return sim::hullClearance(hull, usv_ne, usv_yaw, w, 0.0);  // a world of the AUV alone: nothing moves in it
 }
 
 }  // namespace closed_loop

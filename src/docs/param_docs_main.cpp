@@ -34,6 +34,7 @@
 #include "offshore_gnc/perception/sensor_frame.h"
 #include "offshore_gnc/perception/sonar_image.h"
 #include "offshore_gnc/perception/sonar_targets.h"
+#include "offshore_gnc/perception/target_tracker.h"
 #include "offshore_gnc/perception/wall_detection.h"
 #include "offshore_gnc/relay/config.h"
 #include "offshore_gnc/safety/supervisor.h"
@@ -199,6 +200,9 @@ void printParameters() {
         geo::WorldFramesParams::table(), {{"default", geo::WorldFramesParams()}});
   table("LiDAR targets", "`config/perception/lidar_usv.yaml` -> the LidarTargets nodelet.",
         perception::LidarConfig::table(), {{"default", perception::LidarConfig()}});
+  table("LiDAR tracks", "`config/perception/lidar_usv.yaml` (`tracker/...`) -> the LidarTargets nodelet's tracks "
+        "(/usv/tracks: docs/perception.md, \"LiDAR tracks\").",
+        perception::TrackerParams::table(), {{"default", perception::TrackerParams()}}, "tracker/");
   table("Sonar targets", "`config/perception/sonar_auv.yaml` -> the SonarTargets nodelet, the only one "
         "fed the beams (WallDetection takes its sweeps on `sonar/sweep`).",
         perception::SonarConfig::table(), {{"default", perception::SonarConfig()}});

@@ -1,5 +1,5 @@
-// LidarTargets: PointCloud2 (usv/lidar) -> TargetArray in map_ned (/usv/obstacles) + markers. Thin wrapper
-// over perception::LidarTargetExtractor; reads the cloud's buffer in place (zero-copy in a manager). Each cloud is
+// LidarTargets: PointCloud2 (usv/lidar) -> TargetArray in map_ned (/usv/obstacles), the targets followed over frames
+// as tracks (/usv/tracks, perception::TargetTracker) + markers. Thin wrapper over perception::LidarTargetExtractor; reads the cloud's buffer in place (zero-copy in a manager). Each cloud is
 // levelled with the sensor's roll and pitch from its IMU (`lidar/imu`, sensor_msgs/Imu: the MRS1000's built-in
 // IMU) nearest its stamp; without one (none within ~imu_timeout) the cloud is taken as level and counted. The
 // targets are then placed with the TF of the cloud's frame, whose base_link pose has no roll or pitch (the USV's
@@ -19,9 +19,12 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "offshore_gnc/TargetArray.h"
+#include "offshore_gnc/TrackArray.h"
 #include "offshore_gnc/ros/params.h"
+#include "offshore_gnc/ros/diagnostics.h"
 #include "offshore_gnc/ros/markers.h"
 #include "offshore_gnc/perception/sensor_frame.h"
 #include "ros_perception.h"
@@ -45,6 +48,9 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
       imu_topic_ = imu.imu_topic;
       imu_timeout_ = imu.imu_timeout;
       extractor_ = std::make_unique<perception::LidarTargetExtractor>(cfg);
+      perception::TrackerParams tp;
+      ros_util::readParams(p, perception::TrackerParams::table(), tp, "tracker/");
+      tracker_ = std::make_unique<perception::TargetTracker>(tp);
     } catch (const ConfigError& e) {
       NODELET_FATAL("%s", e.what());
       throw;
@@ -52,7 +58,9 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
     tf_ = std::make_unique<tf2_ros::Buffer>();
     listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_, nh);
     targets_pub_ = nh.advertise<offshore_gnc::TargetArray>("obstacles", 5);
+    tracks_pub_ = nh.advertise<offshore_gnc::TrackArray>("tracks", 5);
     markers_.advertise(nh, "markers", "lidar_targets");
+    track_markers_.advertise(nh, "markers", "lidar_tracks");
     sub_ = nh.subscribe("lidar/points", 2, &LidarTargetsNodelet::onCloud, this);
     if (!imu_topic_.empty()) imu_sub_ = nh.subscribe(imu_topic_, 20, &LidarTargetsNodelet::onImu, this);
     diag_ = std::make_unique<perception_ros::Diagnostics>(
@@ -60,6 +68,8 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
           s.add("frames", frames_.load());
           s.add("last_targets", last_targets_.load());
           s.add("last_processing_ms", last_ms_.load());
+          s.add("confirmed_tracks", confirmed_tracks_.load());
+          ros_util::addCounters(s, tracker_->counters(), {"non_finite_detection", "non_finite_time", "time_backwards"});
         });
     NODELET_INFO("LiDAR targets: gap %.2f m, range [%.1f, %.1f] m, z [%.1f, %.1f] m -> %s", cfg.gap, cfg.min_range,
                  cfg.max_range, cfg.min_z, cfg.max_z, target_frame_.c_str());
@@ -123,7 +133,33 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
     last_targets_ = out.targets.size();
     markers_.publish(perception_ros::targetMarkers(out.targets, 1.0f, 0.5f, 0.0f), out.header);
     targets_pub_.publish(out);
+    track(out);
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  // The frame's targets (their centroids in the target frame) into the tracker, its tracks out.
+  void track(const offshore_gnc::TargetArray& targets) {
+    std::vector<perception::Detection> d;
+    for (const auto& t : targets.targets) {
+      perception::Detection x;
+      x.position = {t.centroid.x, t.centroid.y};
+      x.length = t.length;
+      x.width = t.width;
+      d.push_back(x);
+    }
+    const double now = targets.header.stamp.toSec();
+    if (!tracker_->update(now, d)) return;
+    offshore_gnc::TrackArray out;
+    out.header = targets.header;
+    std::uint64_t confirmed = 0;
+    for (const auto& tr : tracker_->tracks()) {
+      out.tracks.push_back(perception_ros::toTrack(tr, now));
+      out.tracks.back().header = out.header;
+      confirmed += tr.confirmed;
+    }
+    confirmed_tracks_ = confirmed;
+    track_markers_.publish(perception_ros::trackMarkers(tracker_->tracks()), out.header);
+    tracks_pub_.publish(out);
   }
 
   struct Attitude {
@@ -135,13 +171,14 @@ class LidarTargetsNodelet : public nodelet::Nodelet {
   std::deque<Attitude> attitude_;
   ros::Subscriber imu_sub_;
   std::unique_ptr<perception::LidarTargetExtractor> extractor_;
+  std::unique_ptr<perception::TargetTracker> tracker_;
   std::unique_ptr<tf2_ros::Buffer> tf_;
   std::unique_ptr<tf2_ros::TransformListener> listener_;
-  ros::Publisher targets_pub_;
-  ros_util::NamespaceMarkers markers_;
+  ros::Publisher targets_pub_, tracks_pub_;
+  ros_util::NamespaceMarkers markers_, track_markers_;
   ros::Subscriber sub_;
   std::unique_ptr<perception_ros::Diagnostics> diag_;
-  std::atomic<std::uint64_t> frames_{0}, last_targets_{0};
+  std::atomic<std::uint64_t> frames_{0}, last_targets_{0}, confirmed_tracks_{0};
   std::atomic<double> last_ms_{0.0};
 };
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -18,6 +19,8 @@ namespace perception_ros {
 
 namespace {
 constexpr double kPoseSilentS = 1.0;  // a pose this much older than a message: its source has stopped [s]
+constexpr double kArrowS = 5.0;       // a track's velocity arrow: where it would be this much later [s]
+constexpr double kMovingMps = 0.1;    // slower: no arrow (a buoy's would be a dot) [m/s]
 }  // namespace
 
 perception::CloudView cloudView(const sensor_msgs::PointCloud2& m) {
@@ -153,6 +156,56 @@ std::vector<visualization_msgs::Marker> targetMarkers(const std::vector<offshore
     m.color.b = b;
     m.color.a = 0.8f;
     a.push_back(m);
+  }
+  return a;
+}
+
+offshore_gnc::Track toTrack(const perception::Track& tr, double now) {
+  offshore_gnc::Track m;
+  m.id = tr.id;
+  m.status = tr.confirmed ? offshore_gnc::Track::CONFIRMED : offshore_gnc::Track::TENTATIVE;
+  m.position.x = tr.x(0);
+  m.position.y = tr.x(1);
+  m.velocity.x = tr.x(2);
+  m.velocity.y = tr.x(3);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) m.covariance[4 * i + j] = tr.P(i, j);
+  m.length = tr.length;
+  m.width = tr.width;
+  m.hits = static_cast<std::uint32_t>(tr.hits);
+  m.age = now - tr.born;
+  m.unseen = now - tr.last_seen;
+  return m;
+}
+
+std::vector<visualization_msgs::Marker> trackMarkers(const std::vector<perception::Track>& tracks) {
+  std::vector<visualization_msgs::Marker> a;
+  for (const auto& tr : tracks) {
+    if (!tr.confirmed) continue;
+    const double speed = tr.velocity().norm();
+    visualization_msgs::Marker text;
+    text.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+    text.pose.position = toPoint(Eigen::Vector3d(tr.x(0), tr.x(1), -2.5));  // above the water (z down)
+    char b[48];
+    std::snprintf(b, sizeof b, "#%u %.1f m/s", tr.id, speed);
+    text.text = b;
+    text.scale.z = 1.0;
+    text.color.r = text.color.g = text.color.b = 1.0f;
+    text.color.a = 1.0f;
+    a.push_back(text);
+    if (speed < kMovingMps) continue;
+    visualization_msgs::Marker arrow;
+    arrow.type = visualization_msgs::Marker::ARROW;
+    arrow.points = {toPoint(Eigen::Vector3d(tr.x(0), tr.x(1), -1.0)),
+                    toPoint(Eigen::Vector3d(tr.x(0) + kArrowS * tr.x(2), tr.x(1) + kArrowS * tr.x(3), -1.0))};
+    arrow.scale.x = 0.2;  // shaft diameter, head diameter and length [m]
+    arrow.scale.y = 0.6;
+    arrow.scale.z = 0.8;
+    arrow.color.r = 0.0f;
+    arrow.color.g = 0.8f;
+    arrow.color.b = 1.0f;
+    arrow.color.a = 0.9f;
+    a.push_back(arrow);
   }
   return a;
 }

@@ -16,9 +16,11 @@
 
 #include "offshore_gnc/SonarBeam.h"
 #include "offshore_gnc/Target.h"
+#include "offshore_gnc/Track.h"
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/perception/lidar_targets.h"
 #include "offshore_gnc/perception/sonar_targets.h"
+#include "offshore_gnc/perception/target_tracker.h"
 #include "offshore_gnc/ros/params.h"
 
 namespace offshore_gnc {
@@ -60,6 +62,12 @@ offshore_gnc::Target toTarget(const perception::TargetGeometry& g, const Eigen::
 // One cylinder per target at its origin, sized by its extent (for ros_util::NamespaceMarkers::publish).
 std::vector<visualization_msgs::Marker> targetMarkers(const std::vector<offshore_gnc::Target>& targets, float r,
                                                     float g, float b);
+
+// A track as the message carries it, its age and time unseen at `now` [s].
+offshore_gnc::Track toTrack(const perception::Track& tr, double now);
+
+// Per confirmed track: its id and speed as text above it, and an arrow of its velocity (5 s of travel) when it moves.
+std::vector<visualization_msgs::Marker> trackMarkers(const std::vector<perception::Track>& tracks);
 
 // diagnostic_updater with the core's counters, updated once a second; `extra` adds module figures.
 class Diagnostics {

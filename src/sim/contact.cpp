@@ -27,7 +27,7 @@ BgPolygon toBg(const Polygon& p) {
 }
 }  // namespace
 
-double hullClearance(const HullFootprint& hull, const Eigen::Vector2d& ne, double yaw, const World& world,
+double hullClearance(const HullFootprint& hull, const Eigen::Vector2d& ne, double yaw, const World& world, double t,
                      const std::vector<Vessel>& extra, std::string* nearest) {
   const BgPolygon h = toBg(hull.placed(ne, yaw));
   double best = std::numeric_limits<double>::infinity();
@@ -44,8 +44,8 @@ double hullClearance(const HullFootprint& hull, const Eigen::Vector2d& ne, doubl
     const BgPoint c(b.centre.x(), b.centre.y());
     keep(bg::within(c, h) ? -b.radius : bg::distance(c, h) - b.radius, "a buoy", b.centre);
   }
-  for (const auto& v : world.vessels) keep(bg::distance(toBg(vesselFootprint(v)), h), "a vessel", v.centre);
-  for (const auto& v : extra) keep(bg::distance(toBg(vesselFootprint(v)), h), "a vessel", v.centre);
+  for (const auto* vs : {&world.vessels, &extra})
+    for (const auto& v : *vs) keep(bg::distance(toBg(vesselFootprint(v, t)), h), "a vessel", vesselPose(v, t).centre);
   for (const auto& s : world.shorelines) keep(bg::distance(toBg(s), h), "the shore", ne);
   return best;
 }

@@ -71,6 +71,59 @@ class Reader {
 };
 
 std::string idx(const std::string& list, std::size_t i) { return list + "[" + std::to_string(i) + "]"; }
+
+bool flag(const Reader& r, const YAML::Node& n, const std::string& path, const std::string& key) {
+  try {
+    return n[key].as<bool>();
+  } catch (const YAML::Exception&) {
+    r.fail(path + "." + key, "must be true or false");
+  }
+}
+
+constexpr double kMaxVesselSpeed = 30.0;  // [m/s] about 58 kn: faster is a typo
+
+// A vessel under way (docs/simulation.md): `course_deg` and `speed` from its north/east, or `track` (two or more
+// points) at `speed`; `gives_way: false` marks one that keeps its course and speed whatever the rules ask.
+void readMotion(const Reader& r, const YAML::Node& n, const std::string& p, Vessel& v) {
+  VesselMotion& m = v.motion;
+  const bool course = static_cast<bool>(n["course_deg"]), track = static_cast<bool>(n["track"]);
+  if (!course && !track) {
+    for (const char* k : {"speed", "loop", "gives_way"})
+      if (n[k]) r.fail(p + "." + k, "is for a vessel under way: give it course_deg or track");
+    return;
+  }
+  if (course && track) r.fail(p + ".track", "and course_deg exclude each other: a vessel goes one way or the other");
+  if (n["yaw_deg"]) r.fail(p + ".yaw_deg", "is for a moored vessel: one under way heads along its course");
+  m.speed = r.number(n, p, "speed", 0.0, kMaxVesselSpeed);
+  if (n["gives_way"]) m.gives_way = flag(r, n, p, "gives_way");
+  if (course) {
+    if (n["loop"]) r.fail(p + ".loop", "is for a track");
+    m.kind = VesselMotion::Kind::kCourse;
+    m.course = wrapAngle(deg2rad(r.number(n, p, "course_deg", -360.0, 360.0)));
+    v.yaw = m.course;
+    return;
+  }
+  for (const char* k : {"north", "east"})
+    if (n[k]) r.fail(p + "." + k, "is not for a vessel on a track: it starts at the track's first point");
+  const YAML::Node tr = n["track"];
+  const std::string tp = p + ".track";
+  if (!tr.IsSequence()) r.fail(tp, "must be a list of points {north, east}");
+  if (tr.size() < 2) r.fail(tp, "needs at least 2 points, has " + std::to_string(tr.size()));
+  double length = 0.0;
+  for (std::size_t k = 0; k < tr.size(); ++k) {
+    const std::string kp = idx(tp, k);
+    r.keys(tr[k], kp, {"north", "east"});
+    m.track.emplace_back(r.number(tr[k], kp, "north", -kMaxCoord, kMaxCoord),
+                         r.number(tr[k], kp, "east", -kMaxCoord, kMaxCoord));
+    if (k > 0) length += (m.track[k] - m.track[k - 1]).norm();
+  }
+  if (length < 0.1) r.fail(tp, "has no length: its points coincide");
+  if (n["loop"]) m.loop = flag(r, n, p, "loop");
+  m.kind = VesselMotion::Kind::kTrack;
+  const VesselPose start = vesselPose(v, 0.0);
+  v.centre = start.centre;
+  v.yaw = start.yaw;
+}
 }  // namespace
 
 namespace {
@@ -142,8 +195,11 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
     for (std::size_t i = 0; i < obs.size(); ++i) {
       const std::string p = idx("obstacles", i);
       const std::string type = r.text(obs[i], p, "type");
-      const Eigen::Vector2d c(r.number(obs[i], p, "north", -kMaxCoord, kMaxCoord),
-                              r.number(obs[i], p, "east", -kMaxCoord, kMaxCoord));
+      // a vessel on a track starts at its first point: no centre of its own
+      const bool on_track = type == "vessel" && obs[i]["track"];
+      const Eigen::Vector2d c = on_track ? Eigen::Vector2d::Zero()
+                                         : Eigen::Vector2d(r.number(obs[i], p, "north", -kMaxCoord, kMaxCoord),
+                                                           r.number(obs[i], p, "east", -kMaxCoord, kMaxCoord));
       if (type == "buoy") {
         r.keys(obs[i], p, {"type", "north", "east", "radius", "height", "draft"});
         const Buoy def;
@@ -151,7 +207,8 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
                                  r.opt(obs[i], p, "height", def.height, 0.05, 50.0),
                                  r.opt(obs[i], p, "draft", def.draft, 0.0, 50.0)});
       } else if (type == "vessel") {
-        r.keys(obs[i], p, {"type", "north", "east", "length", "width", "height", "draft", "yaw_deg"});
+        r.keys(obs[i], p, {"type", "north", "east", "length", "width", "height", "draft", "yaw_deg", "course_deg",
+                           "speed", "track", "loop", "gives_way"});
         Vessel v;
         v.centre = c;
         v.length = r.number(obs[i], p, "length", 0.5, 400.0);
@@ -159,6 +216,7 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
         v.height = r.opt(obs[i], p, "height", 2.0, 0.1, 60.0);
         v.draft = r.opt(obs[i], p, "draft", v.draft, 0.0, 30.0);
         v.yaw = deg2rad(r.opt(obs[i], p, "yaw_deg", 0.0, -360.0, 360.0));
+        readMotion(r, obs[i], p, v);
         s.world.vessels.push_back(v);
       } else {
         r.fail(p + ".type", "= '" + type + "' must be 'buoy' or 'vessel'");
@@ -227,7 +285,7 @@ Scenario parseChecked(const std::string& yaml_text, const std::string& base_dir,
     for (std::size_t i = 0; i < s.world.buoys.size(); ++i)
       if ((p - s.world.buoys[i].centre).norm() < s.world.buoys[i].radius) return idx("obstacles buoy", i);
     for (std::size_t i = 0; i < s.world.vessels.size(); ++i)
-      if (insidePolygon(vesselFootprint(s.world.vessels[i]), p)) return idx("obstacles vessel", i);
+      if (insidePolygon(vesselFootprint(s.world.vessels[i], 0.0), p)) return idx("obstacles vessel", i);
     if (!s.map.empty() && s.map.occupied(p)) return "map (land)";
     return "";
   };

@@ -149,7 +149,7 @@ void Lidar::scan(const VehicleState& s, LidarScan& out) {
   const Eigen::Vector2d o = sensor.head<2>();
   const double zs = sensor.z();  // NED: negative above the mean water level
   // broad phase once per frame: only shapes within range of the sensor are tested per beam
-  scene_.build(world_, o, cfg_.max_range);
+  scene_.build(world_, s.t, o, cfg_.max_range);
   std::vector<double> sin_e(cfg_.layers), cos_e(cfg_.layers);
   for (int l = 0; l < cfg_.layers; ++l) {
     sin_e[l] = std::sin(cfg_.layer_elevation[l]);
@@ -358,7 +358,7 @@ void Sonar::ping(const VehicleState& s, SonarBeamReading& out) {
       echo(line.norm(), wc.mooring_echo, 1, false);        // and it casts no shadow worth the name
   }
   for (const auto& vsl : world_.vessels) {
-    const Polygon hull = vesselFootprint(vsl);
+    const Polygon hull = vesselFootprint(vsl, s.t);
     double t_hull = -1.0;
     for (std::size_t i = 0; i < hull.size(); ++i) {
       const double t = raySegment(head.head<2>(), d, hull[i], hull[(i + 1) % hull.size()]);

@@ -46,11 +46,38 @@ double rayCircle(const Eigen::Vector2d& o, const Eigen::Vector2d& d, const Eigen
   return t >= 0.0 ? t : -1.0;
 }
 
-Polygon vesselFootprint(const Vessel& v) {
-  const Eigen::Vector2d ax(std::cos(v.yaw), std::sin(v.yaw)), ay(-std::sin(v.yaw), std::cos(v.yaw));
+VesselPose vesselPose(const Vessel& v, double t) {
+  const VesselMotion& m = v.motion;
+  switch (m.kind) {
+    case VesselMotion::Kind::kMoored: return {v.centre, v.yaw};
+    case VesselMotion::Kind::kCourse:
+      return {v.centre + m.speed * t * Eigen::Vector2d(std::cos(m.course), std::sin(m.course)), m.course};
+    case VesselMotion::Kind::kTrack: break;
+  }
+  // along the track: the legs in order (the closing leg too when it loops), `run` metres from the first point
+  const std::size_t n = m.track.size(), legs = m.loop ? n : n - 1;
+  double total = 0.0;
+  for (std::size_t i = 0; i < legs; ++i) total += (m.track[(i + 1) % n] - m.track[i]).norm();
+  double run = m.speed * std::max(t, 0.0);
+  if (m.loop && total > 0.0) run = std::fmod(run, total);
+  double yaw = v.yaw;
+  for (std::size_t i = 0; i < legs; ++i) {
+    const Eigen::Vector2d a = m.track[i], d = m.track[(i + 1) % n] - a;
+    const double len = d.norm();
+    if (len <= 0.0) continue;  // a repeated point: no leg, no heading
+    yaw = std::atan2(d.y(), d.x());
+    if (run <= len) return {a + run / len * d, yaw};
+    run -= len;
+  }
+  return {m.track[m.loop ? 0 : n - 1], yaw};  // at its end (stopped), heading along its last leg
+}
+
+Polygon vesselFootprint(const Vessel& v, double t) {
+  const VesselPose p = vesselPose(v, t);
+  const Eigen::Vector2d ax(std::cos(p.yaw), std::sin(p.yaw)), ay(-std::sin(p.yaw), std::cos(p.yaw));
   const double hl = v.length / 2, hw = v.width / 2;
-  return {v.centre + hl * ax + hw * ay, v.centre - hl * ax + hw * ay, v.centre - hl * ax - hw * ay,
-          v.centre + hl * ax - hw * ay};
+  return {p.centre + hl * ax + hw * ay, p.centre - hl * ax + hw * ay, p.centre - hl * ax - hw * ay,
+          p.centre + hl * ax - hw * ay};
 }
 
 bool insidePolygon(const Polygon& poly, const Eigen::Vector2d& p) {
@@ -64,7 +91,7 @@ bool insidePolygon(const Polygon& poly, const Eigen::Vector2d& p) {
   return in;
 }
 
-void RayScene::build(const World& w, const Eigen::Vector2d& centre, double radius) {
+void RayScene::build(const World& w, double t, const Eigen::Vector2d& centre, double radius) {
   buoys.clear();
   segments.clear();
   segment_extent.clear();
@@ -80,7 +107,7 @@ void RayScene::build(const World& w, const Eigen::Vector2d& centre, double radiu
       }
     }
   };
-  for (const auto& v : w.vessels) addPoly(vesselFootprint(v), -v.height);
+  for (const auto& v : w.vessels) addPoly(vesselFootprint(v, t), -v.height);
   for (const auto& p : w.shorelines) addPoly(p, kLandTop);
 }
 

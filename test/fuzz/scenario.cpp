@@ -35,8 +35,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     violated("an accepted scenario has a non-finite or out-of-area start");
   for (const auto& b : s.world.buoys)
     if (!finite(b.centre) || !(b.radius > 0)) violated("an accepted buoy is not finite");
-  for (const auto& v : s.world.vessels)
+  for (const auto& v : s.world.vessels) {
     if (!finite(v.centre) || !(v.length > 0) || !(v.width > 0) || !std::isfinite(v.yaw)) violated("vessel");
+    const sim::VesselMotion& m = v.motion;
+    if (!(m.speed >= 0 && m.speed <= 30) || !std::isfinite(m.course) ||
+        (m.kind == sim::VesselMotion::Kind::kTrack && m.track.size() < 2))
+      violated("an accepted vessel under way has a negative or non-finite speed or course, or a track of < 2 points");
+    for (const auto& p : m.track)
+      if (!finite(p)) violated("an accepted vessel's track has a point that is not finite");
+  }
   for (const auto& w : s.world.walls)
     if (!finite(w.a) || !finite(w.b) || (w.b - w.a).norm() < 0.1) violated("an accepted wall is degenerate");
   for (const auto& t : s.world.targets)

@@ -17,9 +17,10 @@ namespace sim {
 using models::HullFootprint;
 
 // Signed clearance [m] between the placed hull and the nearest obstacle of `world` (and `extra` vessels, e.g. a
-// fault's): > 0 the gap, <= 0 contact (0 when the shapes touch or overlap; a buoy's centre inside the hull gives
-// minus its radius). +inf when the world is empty. `nearest`, when given, names the nearest obstacle and where it is.
-double hullClearance(const HullFootprint& hull, const Eigen::Vector2d& ne, double yaw, const World& world,
+// fault's), its vessels where they are at time t [s]: > 0 the gap, <= 0 contact (0 when the shapes touch or
+// overlap; a buoy's centre inside the hull gives minus its radius). +inf when the world is empty. `nearest`, when
+// given, names the nearest obstacle and where it is.
+double hullClearance(const HullFootprint& hull, const Eigen::Vector2d& ne, double yaw, const World& world, double t,
                      const std::vector<Vessel>& extra = {}, std::string* nearest = nullptr);
 
 }  // namespace sim

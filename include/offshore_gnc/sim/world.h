@@ -1,7 +1,8 @@
 #pragma once
-// The simulated world the sensor models see: buoys (vertical cylinders, moored to the bottom), vessels (boxes),
-// shorelines (closed polygons of land, infinitely high), underwater walls (vertical segments), underwater
-// targets and a flat bottom.
+// The simulated world the sensor models see: buoys (vertical cylinders, moored to the bottom), vessels (boxes,
+// moored or under way), shorelines (closed polygons of land, infinitely high), underwater walls (vertical
+// segments), underwater targets and a flat bottom. Time t is the simulation's [s] from the scenario's start: a
+// vessel under way is where vesselPose(v, t) puts it, for every sensor and contact check alike.
 // NED frame (x north, y east, z down), SI units. ROS-free.
 #include <Eigen/Core>
 #include <vector>
@@ -16,12 +17,35 @@ struct Buoy {
   double draft = 0.5;   // below it [m]; a vertical mooring line runs from there to the bottom
 };
 
+// How a vessel moves: not at all, on a constant course and speed from its centre, or along a track of waypoints
+// at a speed (from the first point; it stops at the last, or with `loop` runs back to the first and round again).
+// Under way its long axis points along its course.
+struct VesselMotion {
+  enum class Kind { kMoored, kCourse, kTrack };
+  Kind kind = Kind::kMoored;
+  double course = 0.0;  // [rad] NED, kCourse
+  double speed = 0.0;   // over ground [m/s]
+  std::vector<Eigen::Vector2d> track;  // kTrack: north, east [m], at least two points
+  bool loop = false;                   // kTrack
+  // false: keeps its course and speed whatever the rules ask of it (for the COLREGs work; the simulator moves
+  // every vessel as its motion says either way)
+  bool gives_way = true;
+};
+
 struct Vessel {
-  Eigen::Vector2d centre{0, 0};
+  Eigen::Vector2d centre{0, 0};  // moored, or where it is at t = 0 on a course (a track starts at its first point)
   double yaw = 0.0;  // heading of the long axis [rad]
   double length = 8.0, width = 3.0, height = 2.0;
   double draft = 0.5;  // [m]
+  VesselMotion motion;
 };
+
+struct VesselPose {
+  Eigen::Vector2d centre;
+  double yaw;
+};
+// Where the vessel is at time t [s]; a moored vessel at its centre whatever t.
+VesselPose vesselPose(const Vessel& v, double t);
 
 struct Target {  // underwater object (sphere), e.g. the thesis' sunken target
   Eigen::Vector3d position{0, 0, 0};
@@ -55,7 +79,8 @@ struct RayScene {
   std::vector<Buoy> buoys;
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> segments;  // with their vertical extents below
   std::vector<std::pair<double, double>> segment_extent;
-  void build(const World& w, const Eigen::Vector2d& centre, double radius);
+  // The shapes within `radius` of `centre`, vessels where they are at time t.
+  void build(const World& w, double t, const Eigen::Vector2d& centre, double radius);
   void cast(const Eigen::Vector2d& o, const Eigen::Vector2d& d, double max_dist, std::vector<Hit2d>& hits) const;
 };
 
@@ -64,8 +89,8 @@ double raySegment(const Eigen::Vector2d& o, const Eigen::Vector2d& d, const Eige
                   const Eigen::Vector2d& b);
 // Distance along the ray to a circle's boundary from outside (negative when it misses or o is inside).
 double rayCircle(const Eigen::Vector2d& o, const Eigen::Vector2d& d, const Eigen::Vector2d& c, double r);
-// Corners of a vessel's footprint (counter-clockwise in NED x/y order of construction).
-Polygon vesselFootprint(const Vessel& v);
+// Corners of a vessel's footprint at time t (counter-clockwise in NED x/y order of construction).
+Polygon vesselFootprint(const Vessel& v, double t);
 // True when p lies inside the polygon (even-odd rule).
 bool insidePolygon(const Polygon& poly, const Eigen::Vector2d& p);
 

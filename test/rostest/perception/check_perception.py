@@ -20,7 +20,7 @@ from nav_msgs.msg import Path
 from sensor_msgs.msg import Image, PointCloud2, PointField
 from visualization_msgs.msg import MarkerArray
 
-from offshore_gnc.msg import SonarBeam, TargetArray
+from offshore_gnc.msg import SonarBeam, TargetArray, Track, TrackArray
 
 # Ground truth, NED (x north, y east).
 BUOYS = [(50.0, 30.0, 0.5), (35.0, -5.0, 0.8)]          # USV scene: (N, E, radius)
@@ -70,9 +70,10 @@ class PerceptionTest(unittest.TestCase):
         rospy.init_node("check_perception")
         cls.lock = threading.Lock()
         cls.obstacles, cls.sonar_targets, cls.paths, cls.images, cls.sweeps = [], [], [], [], []
-        cls.markers, cls.diag = [], {}
+        cls.markers, cls.diag, cls.tracks = [], {}, []
         cls.subs = [
             rospy.Subscriber("/usv/obstacles", TargetArray, cls._add(cls.obstacles)),
+            rospy.Subscriber("/usv/tracks", TrackArray, cls._add(cls.tracks)),
             rospy.Subscriber("/auv/sonar/targets", TargetArray, cls._add(cls.sonar_targets)),
             rospy.Subscriber("/auv/sonar/wall_path", Path, cls._add(cls.paths)),
             rospy.Subscriber("/auv/sonar/image", Image, cls._add(cls.images)),
@@ -200,6 +201,34 @@ class PerceptionTest(unittest.TestCase):
         self.assertEqual(checked, 8)
         with self.lock:
             self.assertTrue(any(m.markers and m.markers[-1].ns == "lidar_targets" for m in self.markers))
+        # the same frames as tracks: one per buoy from the first frame on, confirmed from the fourth, the ids kept
+        deadline = time.time() + 5
+        while time.time() < deadline:
+            with self.lock:
+                if len(self.tracks) >= 8:
+                    break
+            time.sleep(0.05)
+        with self.lock:
+            tracks = list(self.tracks[-8:])
+            track_markers = [m for a in self.markers for m in a.markers if m.ns == "lidar_tracks"]
+        self.assertEqual(len(tracks), 8)
+        ids = sorted(t.id for t in tracks[0].tracks)
+        self.assertEqual(len(ids), len(BUOYS))
+        for i, msg in enumerate(tracks):
+            self.assertEqual(msg.header.frame_id, "map_ned")
+            self.assertEqual(sorted(t.id for t in msg.tracks), ids, "frame %d" % i)
+            want = Track.CONFIRMED if i >= 3 else Track.TENTATIVE
+            self.assertEqual([t.status for t in msg.tracks], [want] * len(BUOYS), "frame %d" % i)
+        for bn, be, br in BUOYS:
+            t = min(tracks[-1].tracks, key=lambda t: math.hypot(t.position.x - bn, t.position.y - be))
+            self.assertLess(math.hypot(t.position.x - bn, t.position.y - be), br + 0.1)
+            self.assertLess(math.hypot(t.velocity.x, t.velocity.y), 1.0)  # its returns move round it as the USV turns
+            self.assertEqual(t.hits, 8)
+            self.assertEqual(len(t.covariance), 16)
+            self.assertGreater(t.covariance[0], 0.0)
+        self.assertTrue(any(m.type == m.TEXT_VIEW_FACING and m.text.startswith("#%d " % ids[0]) for m in track_markers),
+                        [m.text for m in track_markers])
+        self.assertIn("tracks_born", self._diag_of("lidar_targets"))
 
     # ------------------------------------------------------------------ sonar
     def _beam(self, stamp, bearing, n, e, yaw_ned, status=SonarBeam.STATUS_HEAD_READY | SonarBeam.STATUS_MOTOR_ON,

@@ -12,7 +12,7 @@ import rostest
 import yaml
 from nav_msgs.msg import Path
 
-from offshore_gnc.msg import TargetArray
+from offshore_gnc.msg import TargetArray, Track, TrackArray
 from offshore_gnc.testing.poll import wait_until
 
 VEHICLE = sys.argv[1] if len(sys.argv) > 1 else "usv"
@@ -24,10 +24,11 @@ class PerceptionSimTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("check_perception_sim")
         cls.lock = threading.Lock()
-        cls.targets, cls.paths = [], []
+        cls.targets, cls.paths, cls.tracks = [], [], []
         topic = "/usv/obstacles" if VEHICLE == "usv" else "/auv/sonar/targets"
         cls.subs = [rospy.Subscriber(topic, TargetArray, cls._add(cls.targets)),
-                    rospy.Subscriber("/auv/sonar/wall_path", Path, cls._add(cls.paths))]
+                    rospy.Subscriber("/auv/sonar/wall_path", Path, cls._add(cls.paths)),
+                    rospy.Subscriber("/usv/tracks", TrackArray, cls._add(cls.tracks))]
 
     @classmethod
     def _add(cls, store):
@@ -62,6 +63,26 @@ class PerceptionSimTest(unittest.TestCase):
                 d = min(math.hypot(t.centroid.x - o["north"], t.centroid.y - o["east"]) for o in SCENARIO["obstacles"])
                 self.assertLess(d, 6.0, "unexpected target at %.1f, %.1f" % (t.centroid.x, t.centroid.y))
 
+    def test_lidar_tracks_of_what_stands_still(self):
+        """Every obstacle a confirmed track that keeps its id and stands still (within the GPS-compass's noise)."""
+        self.assertTrue(self._wait(lambda: len(self.tracks) >= 40, 60), "fewer than 40 /usv/tracks messages")
+        with self.lock:
+            frames = self.tracks[-10:]
+        ids = None
+        for msg in frames:
+            self.assertEqual(msg.header.frame_id, "map_ned")
+            near = []
+            for ob in SCENARIO["obstacles"]:
+                tol = ob["radius"] + 0.7 if ob["type"] == "buoy" else 0.5 * math.hypot(ob["length"], ob["width"]) + 0.7
+                t = [t for t in msg.tracks if t.status == Track.CONFIRMED and
+                     math.hypot(t.position.x - ob["north"], t.position.y - ob["east"]) < tol]
+                self.assertEqual(len(t), 1, "obstacle at %s: %d confirmed tracks" % ((ob["north"], ob["east"]), len(t)))
+                self.assertLess(math.hypot(t[0].velocity.x, t[0].velocity.y), 0.4, t[0])
+                near.append(t[0].id)
+            if ids is None:
+                ids = near
+            self.assertEqual(near, ids)
+
     def test_sonar_target_and_wall_path(self):
         tg = SCENARIO["targets"][0]
         wall = SCENARIO["walls"][0]
@@ -87,8 +108,9 @@ class PerceptionSimTest(unittest.TestCase):
 # Each run has exactly the case of its vehicle: the other one is removed, not skipped, because rosunit's XML runner
 # writes a skipped case as a pass (python/offshore_gnc/testing/results.py). An unknown vehicle stops the script
 # here, and rostest reports the missing result as a failure.
-CASES = {"usv": "test_lidar_obstacles_at_scenario_positions", "auv": "test_sonar_target_and_wall_path"}
-for _name in set(CASES.values()) - {CASES[VEHICLE]}:
+CASES = {"usv": ["test_lidar_obstacles_at_scenario_positions", "test_lidar_tracks_of_what_stands_still"],
+         "auv": ["test_sonar_target_and_wall_path"]}
+for _name in {n for names in CASES.values() for n in names} - set(CASES[VEHICLE]):
     delattr(PerceptionSimTest, _name)
 
 if __name__ == "__main__":

@@ -100,6 +100,71 @@ TEST(Scenario, RefusesUnknownMissingAndOutOfRange) {
   expectRefused("name: [\n", {"not valid YAML"});
 }
 
+TEST(Scenario, VesselsUnderWayOnACourseOrATrack) {
+  const Scenario s = parseScenario(std::string(kBase) + R"(obstacles:
+  - {type: vessel, north: 60, east: -40, length: 6, width: 2.5, course_deg: 90, speed: 2.0, gives_way: false}
+  - {type: vessel, length: 5, width: 2, speed: 1.0, track: [{north: 30, east: 20}, {north: 30, east: 30}, {north: 40, east: 30}]}
+  - {type: vessel, length: 5, width: 2, speed: 1.0, loop: true, track: [{north: -30, east: 0}, {north: -30, east: 10}]}
+  - {type: vessel, north: 20, east: -20, length: 8, width: 3, yaw_deg: 45}
+)",
+                                   "config/scenarios", "test.yaml");
+  ASSERT_EQ(s.world.vessels.size(), 4u);
+  const Vessel& crossing = s.world.vessels[0];
+  EXPECT_EQ(crossing.motion.kind, VesselMotion::Kind::kCourse);
+  EXPECT_FALSE(crossing.motion.gives_way);
+  const VesselPose c10 = vesselPose(crossing, 10.0);  // 20 m east of its start, heading east
+  EXPECT_NEAR(c10.centre.x(), 60.0, 1e-9);
+  EXPECT_NEAR(c10.centre.y(), -20.0, 1e-9);
+  EXPECT_NEAR(c10.yaw, kPi / 2, 1e-9);
+
+  const Vessel& track = s.world.vessels[1];
+  EXPECT_EQ(track.motion.kind, VesselMotion::Kind::kTrack);
+  EXPECT_TRUE(track.motion.gives_way);  // unless the file says otherwise
+  EXPECT_NEAR(track.centre.x(), 30.0, 1e-9);  // it starts at the track's first point, heading along its first leg
+  EXPECT_NEAR(track.yaw, kPi / 2, 1e-9);
+  const VesselPose t15 = vesselPose(track, 15.0);  // 10 m along the first leg, 5 m up the second
+  EXPECT_NEAR(t15.centre.x(), 35.0, 1e-9);
+  EXPECT_NEAR(t15.centre.y(), 30.0, 1e-9);
+  EXPECT_NEAR(t15.yaw, 0.0, 1e-9);
+  const VesselPose end = vesselPose(track, 500.0);  // stopped at its last point
+  EXPECT_NEAR(end.centre.x(), 40.0, 1e-9);
+  EXPECT_NEAR(end.centre.y(), 30.0, 1e-9);
+
+  const VesselPose looped = vesselPose(s.world.vessels[2], 25.0);  // 20 m round: 5 m along the first leg again
+  EXPECT_NEAR(looped.centre.x(), -30.0, 1e-9);
+  EXPECT_NEAR(looped.centre.y(), 5.0, 1e-9);
+  const VesselPose back = vesselPose(s.world.vessels[2], 13.0);  // on the closing leg, heading west
+  EXPECT_NEAR(back.centre.y(), 7.0, 1e-9);
+  EXPECT_NEAR(back.yaw, -kPi / 2, 1e-9);
+
+  const VesselPose moored = vesselPose(s.world.vessels[3], 300.0);
+  EXPECT_NEAR(moored.centre.x(), 20.0, 1e-12);
+  EXPECT_NEAR(moored.yaw, kPi / 4, 1e-12);
+}
+
+TEST(Scenario, RefusesAVesselUnderWayThatMakesNoSense) {
+  const std::string v = std::string(kBase) + "obstacles:\n  - {type: vessel, length: 5, width: 2, ";
+  expectRefused(v + "north: 50, east: 0, course_deg: 90, speed: -1}\n", {"obstacles[0].speed", "out of range"});
+  expectRefused(v + "north: 50, east: 0, course_deg: 90, speed: .nan}\n", {"obstacles[0].speed", "out of range"});
+  expectRefused(v + "north: 50, east: 0, course_deg: .nan, speed: 1}\n", {"obstacles[0].course_deg"});
+  expectRefused(v + "north: 50, east: 0, course_deg: 90}\n", {"obstacles[0].speed", "missing"});
+  expectRefused(v + "speed: 1, track: [{north: 50, east: 0}]}\n", {"obstacles[0].track", "at least 2 points"});
+  expectRefused(v + "speed: 1, track: [{north: 50, east: 0}, {north: 50, east: .nan}]}\n",
+                {"obstacles[0].track[1].east", "out of range"});
+  expectRefused(v + "speed: 1, track: [{north: 50, east: 0}, {north: 50, east: 0}]}\n", {"obstacles[0].track", "no length"});
+  expectRefused(v + "speed: 1, track: {north: 50, east: 0}}\n", {"obstacles[0].track", "list"});
+  expectRefused(v + "north: 50, east: 0, speed: 1, track: [{north: 50, east: 0}, {north: 60, east: 0}]}\n",
+                {"obstacles[0].north", "first point"});
+  expectRefused(v + "north: 50, east: 0, speed: 1}\n", {"obstacles[0].speed", "course_deg or track"});
+  expectRefused(v + "north: 50, east: 0, gives_way: false}\n", {"obstacles[0].gives_way", "under way"});
+  expectRefused(v + "north: 50, east: 0, course_deg: 90, speed: 1, gives_way: perhaps}\n",
+                {"obstacles[0].gives_way", "true or false"});
+  expectRefused(v + "north: 50, east: 0, course_deg: 90, speed: 1, yaw_deg: 10}\n", {"obstacles[0].yaw_deg"});
+  expectRefused(v + "north: 50, east: 0, course_deg: 90, speed: 1, loop: true}\n", {"obstacles[0].loop", "track"});
+  expectRefused(v + "north: 50, east: 0, course_deg: 90, speed: 1, track: [{north: 50, east: 0}, {north: 60, east: 0}]}\n",
+                {"obstacles[0].track", "course_deg"});
+}
+
 TEST(Scenario, RefusesImpossibleGeometry) {
   expectRefused(std::string(kBase) + "obstacles:\n  - {type: buoy, north: 0.2, east: 0.0, radius: 1}\n",
                 {"usv.start", "inside"});

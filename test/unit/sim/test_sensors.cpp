@@ -100,6 +100,28 @@ TEST(Lidar, OutOfRangeAndShorelinesAndVessels) {
   EXPECT_NEAR(rangeAt(s, 1, 0.0), 11.0, 1e-4);
 }
 
+TEST(Lidar, AVesselUnderWayIsSeenWhereItIsAtTheFramesTime) {
+  World w;
+  Vessel v;  // 20 m ahead, 10 m to port, crossing to starboard at 2 m/s
+  v.centre = {20.0, -10.0};
+  v.length = 6.0;
+  v.width = 2.0;
+  v.motion.kind = VesselMotion::Kind::kCourse;
+  v.motion.course = kPi / 2;
+  v.motion.speed = 2.0;
+  w.vessels.push_back(v);
+  Lidar lidar(quietLidar(), w, 1);
+  LidarScan s;
+  VehicleState x;  // heading north; azimuth clockwise from the bow
+  lidar.scan(x, s);
+  EXPECT_NEAR(rangeAt(s, 1, std::atan2(-10.0, 19.0)), std::hypot(19.0, 10.0), 0.05);  // its near side, 1 m closer
+  EXPECT_TRUE(std::isnan(rangeAt(s, 1, 0.0)));  // nothing dead ahead yet
+  x.t = 5.0;  // 10 m on: across the bow
+  lidar.scan(x, s);
+  EXPECT_NEAR(rangeAt(s, 1, 0.0), 19.0, 1e-4);
+  EXPECT_TRUE(std::isnan(rangeAt(s, 1, std::atan2(-10.0, 19.0))));
+}
+
 TEST(Lidar, NoiseIsDeterministicForASeed) {
   World w;
   w.shorelines.push_back({{30, -100}, {30, 100}, {40, 100}, {40, -100}});
