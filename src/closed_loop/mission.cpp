@@ -182,6 +182,9 @@ MissionResult runMission(const MissionConfig& cfg) {
   res.min_clearance_m = res.usv_auv_min_clearance_m = std::numeric_limits<double>::infinity();
   res.auv_hold_excursion_m = res.auv_ascent_drift_m = res.auv_surface_excursion_m = kNaN;
   std::pair<double, std::string> closest;  // when the hull came closest to what
+  sim::World traffic;                       // the vessels under way
+  for (const auto& v : cfg.scenario.world.vessels)
+    if (v.motion.kind != sim::VesselMotion::Kind::kMoored) traffic.vessels.push_back(v);
   double auv_closest_t = kNaN;              // and to the AUV near the surface
   // where the USV held at the target: its true position at the last step of ARRIVED (it then leaves for the AUV)
   std::optional<Eigen::Vector2d> usv_station_end;
@@ -269,6 +272,10 @@ MissionResult runMission(const MissionConfig& cfg) {
       if (c < res.min_clearance_m) {
         res.min_clearance_m = c;
         closest = {t, what};
+      }
+      if (!traffic.vessels.empty()) {
+        const double ct = sim::hullClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, traffic, t);
+        if (!(ct >= res.traffic_min_clearance_m)) res.traffic_min_clearance_m = ct;  // NaN at first
       }
       res.recovery_distance_m = auvClearance(cfg.usv.hull, usv_ne, usv.truth().yaw, ax.position.head<2>(), cfg.auv.length);
       if (ax.position.z() < kAuvContactDepth && res.recovery_distance_m < res.usv_auv_min_clearance_m) {

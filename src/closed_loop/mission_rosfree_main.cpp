@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
         "\"usbl_fixes_rejected\": %zu, %s, \"relay_lost\": %zu, \"recovered\": %s, \"auv_hold_excursion_m\": %s, "
         "\"auv_ascent_drift_m\": %s, \"auv_surface_excursion_m\": %s, \"recovery_distance_m\": %s, \"usv_auv_min_clearance_m\": %s, "
         "\"find_to_recovery_s\": %s, \"found_at_s\": %s, \"ascent_at_s\": %s, \"surfaced_at_s\": %s, "
-        "\"recovered_at_s\": %s, \"stacks_died\": %s, \"sim_time_s\": %s, \"wall_time_s\": %s}\n",
+        "\"recovered_at_s\": %s, \"stacks_died\": %s, %s\"sim_time_s\": %s, \"wall_time_s\": %s}\n",
         r.success ? "true" : "false", str(closed_loop::toString(r.outcome)).c_str(), str(r.reason).c_str(),
         num(r.usv.metrics.rmse).c_str(), num(r.usv.metrics.sd).c_str(), num(r.usv.metrics.mae).c_str(),
         r.usv.metrics.samples, num(r.usv.metrics_truth.rmse).c_str(), r.usv.metrics_truth.samples,
@@ -210,6 +210,8 @@ int main(int argc, char** argv) {
         num(r.find_to_recovery_s).c_str(), num(r.found_at_s).c_str(), num(r.ascent_at_s).c_str(),
         num(r.surfaced_at_s).c_str(), num(r.recovered_at_s).c_str(),
         r.stack_died.empty() ? "{}" : ("{" + str(r.stack_died) + ": " + num(cfg.kill_at) + "}").c_str(),
+        std::isnan(r.traffic_min_clearance_m) ? ""
+                                              : ("\"traffic_min_clearance_m\": " + num(r.traffic_min_clearance_m) + ", ").c_str(),
         num(r.sim_time_s).c_str(),
         num(r.wall_time_s).c_str());
     return r.success ? 0 : 1;

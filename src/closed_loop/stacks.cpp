@@ -143,6 +143,7 @@ UsvStackConfig loadUsvStack(const std::string& dir) {
   c.hull.validate();
   const std::vector<ParamSource> lidar = m.sources("lidar_targets");
   readSources(lidar, perception::LidarConfig::table(), c.lidar);
+  for (const auto& s : lidar) readParamsYaml(s.yaml, perception::TrackerParams::table(), c.tracker, s.name, "tracker/");
   perception::SensorFrameParams f;
   readSources(lidar, perception::SensorFrameParams::table(), f);
   c.pose_timeout = f.tf_timeout;
@@ -158,6 +159,7 @@ UsvStack::UsvStack(const sim::Scenario& scenario, const UsvStackConfig& cfg)
       sim_(scenario, cfg.sim),
       nav_(scenario.origin, cfg.navigation),  // in simulation the scenario is the site
       lidar_(cfg.lidar),
+      tracker_(cfg.tracker),
       guidance_(cfg.guidance),
       control_(cfg.control),
       mission_(cfg.mission),
@@ -213,6 +215,7 @@ void UsvStack::perceive(double t) {
     const Eigen::Isometry3d to_world = body * sim::sensorMount(cfg_.sim.lidar.mount, cfg_.sim.lidar.mount_yaw, false);
     obstacles_.clear();
     seen_.clear();
+    std::vector<perception::Detection> detections;
     for (const auto& g : r.targets) {
       const perception::TargetGeometry w = perception::transformed(g, to_world);
       guidance::SbbObstacle o;
@@ -226,8 +229,28 @@ void UsvStack::perceive(double t) {
       so.length = w.length;
       so.width = w.width;
       seen_.push_back(so);
+      detections.push_back({w.centroid.head<2>(), w.length, w.width});  // the nodelet's: the centroid
     }
-    if (r.error == perception::CloudError::None && cfg_.guidance.sbb_enabled) guidance_.setObstacles(obstacles_, t);
+    if (r.error == perception::CloudError::None) {
+      // the LidarTargets nodelet's tracker on the frame's targets at its stamp; the tracks to guidance before the
+      // targets, so that a vessel under way is not also boxed where it stands (as the Guidance nodelet takes them)
+      if (tracker_.update(scan.t, detections) && cfg_.guidance.sbb_enabled) {
+        std::vector<guidance::Contact> contacts;
+        for (const perception::Track& tr : tracker_.tracks()) {
+          guidance::Contact c;
+          c.id = tr.id;
+          c.position = tr.position();
+          c.velocity = tr.velocity();
+          c.covariance = tr.P;
+          c.length = tr.length;
+          c.width = tr.width;
+          c.confirmed = tr.confirmed;
+          contacts.push_back(c);
+        }
+        guidance_.setTracks(contacts, scan.t);
+      }
+      if (cfg_.guidance.sbb_enabled) guidance_.setObstacles(obstacles_, t);
+    }
     scans_.pop_front();
   }
 }

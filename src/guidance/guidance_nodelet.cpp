@@ -1,5 +1,5 @@
-// Guidance nodelet: path + odometry (+ obstacles, USV) -> guidance::GuidancePipeline (SBB planner, replanning,
-// LOS) -> GuidanceStatus (with the reference control follows) at the guidance rate, the safety boxes, the
+// Guidance nodelet: path + odometry (+ obstacles and tracks, USV) -> guidance::GuidancePipeline (SBB planner,
+// replanning, COLREGs avoidance of moving tracks, LOS) -> GuidanceStatus (with the reference control follows) at the guidance rate, the safety boxes, the
 // planned path and rviz markers. Thin: parameters, message conversion, publishing.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <dynamic_reconfigure/server.h>
@@ -9,6 +9,7 @@
 #include <offshore_gnc/GuidanceStatus.h>
 #include <offshore_gnc/SafetyBoxArray.h>
 #include <offshore_gnc/TargetArray.h>
+#include <offshore_gnc/TrackArray.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -60,6 +61,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
     if (gp.sbb_enabled) {
       obstacles_sub_ = nh.subscribe("obstacles", 1, &GuidanceNodelet::onObstacles, this);
       keep_clear_sub_ = nh.subscribe("mission/keep_clear", 1, &GuidanceNodelet::onKeepClear, this);  // latched
+      tracks_sub_ = nh.subscribe("tracks", 1, &GuidanceNodelet::onTracks, this);  // LidarTargets' (issue 33)
     }
 
     reconfigure_ = std::make_unique<dynamic_reconfigure::Server<GuidanceConfig>>(reconf_mutex_, pnh);
@@ -75,6 +77,11 @@ class GuidanceNodelet : public nodelet::Nodelet {
                 last_.los.status_text.empty() ? "idle" : last_.los.status_text);
       ros_util::addCounters(s, pipeline_->losCounters(), {"nan_pose", "bad_path", "bad_dt"});
       ros_util::addCounters(s, pipeline_->counters(), {"stale_odom", "bad_obstacles", "rejected_paths"});
+      ros_util::addCounters(s, pipeline_->colregsCounters(),
+                            {"bad_tracks", "unknown_track_id", "encounters", "give_way", "stand_on_acted", "no_safe_course"});
+      if (last_.colregs.encounter != guidance::Encounter::kNone)
+        s.add("encounter", std::string(guidance::toString(last_.colregs.encounter)) + " with track " +
+                               std::to_string(last_.colregs.contact));
       s.add("obstacles_remembered", pipeline_->remembered());  // kept from memory, out of the LiDAR's view
     });
     timer_ = nh.createTimer(ros::Duration(1.0 / gp.rate), &GuidanceNodelet::onTimer, this);
@@ -115,6 +122,27 @@ class GuidanceNodelet : public nodelet::Nodelet {
     pipeline_->setObstacles(guidance_ros::obstaclesOf(*m), ros::Time::now().toSec());
   }
 
+  // the confirmed moving ones are met by the rules, and not boxed where they stand
+  void onTracks(const TrackArray::ConstPtr& m) {
+    std::vector<guidance::Contact> contacts;
+    contacts.reserve(m->tracks.size());
+    for (const auto& tr : m->tracks) {
+      guidance::Contact c;
+      c.id = tr.id;
+      c.position = {tr.position.x, tr.position.y};
+      c.velocity = {tr.velocity.x, tr.velocity.y};
+      for (int i = 0; i < 16; ++i) c.covariance(i / 4, i % 4) = tr.covariance[i];  // row-major
+      c.length = tr.length;
+      c.width = tr.width;
+      c.confirmed = tr.status == Track::CONFIRMED;
+      contacts.push_back(c);
+    }
+    std::lock_guard<std::mutex> l(mutex_);
+    // the tracks' time: their frame's stamp (positions are predicted from it), as the obstacles' is taken now
+    const double t = m->header.stamp.isZero() ? ros::Time::now().toSec() : m->header.stamp.toSec();
+    pipeline_->setTracks(contacts, t);
+  }
+
   // the mission's (the surfaced AUV it recovers): kept until the next message
   void onKeepClear(const TargetArray::ConstPtr& m) {
     std::lock_guard<std::mutex> l(mutex_);
@@ -143,6 +171,9 @@ class GuidanceNodelet : public nodelet::Nodelet {
     g.acceptance_radius = o.acceptance_radius;
     g.status_text = o.status_text;
     ros_util::fillReference(last_.reference, g);
+    g.encounter = static_cast<uint8_t>(last_.colregs.encounter);
+    g.encounter_contact = last_.colregs.contact;
+    g.encounter_action = static_cast<uint8_t>(last_.colregs.action);
     status_pub_.publish(g);
   }
 
@@ -204,7 +235,7 @@ class GuidanceNodelet : public nodelet::Nodelet {
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::Publisher status_pub_, boxes_pub_, planned_pub_, obstacles_pub_;
   ros_util::NamespaceMarkers markers_;
-  ros::Subscriber path_sub_, odom_sub_, obstacles_sub_, keep_clear_sub_;
+  ros::Subscriber path_sub_, odom_sub_, obstacles_sub_, keep_clear_sub_, tracks_sub_;
   ros::Timer timer_;
 };
 

@@ -253,7 +253,7 @@ LosOutput LosGuidance::update(const VehicleState& s, double dt) {
 
   const double delta = 1.0 / p_.kp;
   // ILOS with anti-windup: the integral term is clamped to +-integral_limit of steering.
-  if (p_.ki > 0.0) {
+  if (p_.ki > 0.0 && !hold_integral_) {
     integral_ += e * dt;
     const double imax = p_.integral_limit / p_.ki;
     integral_ = std::clamp(integral_, -imax, imax);

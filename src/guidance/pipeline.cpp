@@ -75,6 +75,7 @@ const ParamTable<GuidanceParams>& GuidanceParams::table() {
       .nest("sbb/", &P::sbb, SbbParams::table())
       .flag("sbb/enabled", &P::sbb_enabled, "plan safety boxes around obstacles")
       .nest("sbb/", &P::obstacles, ObstacleMemoryParams::table())
+      .nest("colregs/", &P::colregs, ColregsParams::table())
       .number("sbb/replan_distance", &P::replan_distance, 0.0, 100.0, "m",
               "re-set the LOS path only when a planned waypoint moved more than this")
       .number("odom_timeout", &P::odom_timeout, 0.01, 60.0, "s", "older navigation: hold the last good position")
@@ -92,14 +93,21 @@ const std::vector<ReconfigureGroup>& GuidanceParams::reconfigurable() {
   return g;
 }
 
-void GuidanceParams::validate() const { table().validate(*this); }
+void GuidanceParams::validate() const {
+  table().validate(*this);
+  colregs.validate();
+}
 
-GuidancePipeline::GuidancePipeline(const GuidanceParams& p) : p_(p), los_(p.los), seen_(p.obstacles) { p_.validate(); }
+GuidancePipeline::GuidancePipeline(const GuidanceParams& p)
+    : p_(p), los_(p.los), seen_(p.obstacles), colregs_(p.colregs) {
+  p_.validate();
+}
 
 void GuidancePipeline::setParams(const GuidanceParams& p) {
   p.validate();
   los_.setParams(p.los);
   seen_.setParams(p.obstacles);
+  colregs_.setParams(p.colregs);
   p_ = p;
   replan_ = true;
 }
@@ -137,7 +145,12 @@ std::vector<SbbObstacle> finiteObstacles(const std::vector<SbbObstacle>& obstacl
 
 void GuidancePipeline::setObstacles(const std::vector<SbbObstacle>& obstacles, double t) {
   const Eigen::Vector2d at = have_state_ ? Eigen::Vector2d(state_.position.head<2>()) : Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
-  seen_.update(finiteObstacles(obstacles, counters_), at, state_.yaw, t);
+  std::vector<SbbObstacle> standing = finiteObstacles(obstacles, counters_);
+  // a vessel under way is met by the rules where it is going, not boxed where it is (nor remembered there)
+  standing.erase(std::remove_if(standing.begin(), standing.end(),
+                                [&](const SbbObstacle& o) { return colregs_.isMovingTarget(o, t, p_.obstacles.match_gap); }),
+                 standing.end());
+  seen_.update(standing, at, state_.yaw, t);
   replan_ = true;
 }
 
@@ -212,16 +225,40 @@ bool GuidancePipeline::update(double t, double dt, GuidanceOutput& out) {
     final_run_blocked_ = blocked;
     los_.setFinalRunBlocked(blocked);
   }
+  los_.holdIntegral(steering_);  // the cross-track of an alteration is not the current's: no integral wind-up
   out.los = los_.update(s, std::min(std::max(dt, 0.0), 1.0));
   if (stale) out.los.status_text = "odometry stale: holding the last good position";
   else if (!reject_reason_.empty() && out.los.mode == Mode::kHoldFault) out.los.status_text = reject_reason_;
   out.reference = referenceOf(out.los);
+  avoidTraffic(s, t, out);
   if (out.reference.mode == ReferenceMode::kHold) keepHoldClear(t, out);
   if (out.reference.mode == ReferenceMode::kFollow && s.position.allFinite())
     out.reference.room_to_turn = roomToTurn(s.position.head<2>(), t);
   out.planned_changed = planned_changed_;
   out.boxes_changed = boxes_changed_;
   return true;
+}
+
+void GuidancePipeline::avoidTraffic(const VehicleState& s, double t, GuidanceOutput& out) {
+  const bool follow = out.reference.mode == ReferenceMode::kFollow && s.position.allFinite();
+  const Eigen::Vector2d v_ned(std::cos(s.yaw) * s.velocity.x() - std::sin(s.yaw) * s.velocity.y(),
+                              std::sin(s.yaw) * s.velocity.x() + std::cos(s.yaw) * s.velocity.y());
+  const double course = out.los.desired_heading + out.los.crab_angle;  // the course over ground LOS asks for
+  out.colregs = colregs_.update(t, s.position.head<2>(), v_ned, out.los.path_angle, course, out.los.desired_surge,
+                                std::max(hull_.longest(), p_.sbb.corridor), follow ? obstacles(t) : std::vector<SbbObstacle>(),
+                                follow);
+  steering_ = out.colregs.steer;
+  const ColregsOutput& c = out.colregs;
+  if (c.encounter == Encounter::kNone) return;
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(0) << "; " << toString(c.encounter) << ", vessel " << c.contact
+     << (c.action == EncounterAction::kStarboard ? ": altering to starboard, course " : ": standing on, CPA ");
+  if (c.action == EncounterAction::kStarboard) os << rad2deg(wrapTwoPi(c.course)) << " deg";
+  else os << c.cpa << " m in " << c.tcpa << " s";
+  out.los.status_text += os.str();
+  if (!c.steer) return;
+  out.los.desired_heading = out.reference.heading = wrapAngle(c.course - out.los.crab_angle);
+  out.reference.room_to_turn = false;  // under way among traffic: no turning on the spot
 }
 
 bool GuidancePipeline::finalRunBlocked(const Eigen::Vector2d& from, double t) const {

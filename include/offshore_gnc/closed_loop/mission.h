@@ -87,6 +87,9 @@ struct MissionResult {
   double detection_time_s = 0.0;          // from the start of the coverage (NaN without a detection)
   double min_clearance_m = 0.0;           // the USV hull's closest approach to an obstacle (sim/contact.h; <= 0:
                                           // contact; NaN without obstacles)
+  // the same against the vessels under way alone (issue 33: the traffic's closest point of approach, hull to hull;
+  // NaN without traffic, and then left out of mission_rosfree's JSON)
+  double traffic_min_clearance_m = std::numeric_limits<double>::quiet_NaN();
   // the USV's true distance from the nearest true target where it held there (its last moment in ARRIVED, before it
   // left for the recovery), else where it ended (NaN without a target)
   double usv_final_distance_to_target_m = 0.0;

@@ -27,6 +27,7 @@
 #include "offshore_gnc/navigation/pose_history.h"
 #include "offshore_gnc/perception/lidar_targets.h"
 #include "offshore_gnc/perception/sonar_targets.h"
+#include "offshore_gnc/perception/target_tracker.h"
 #include "offshore_gnc/safety/collision.h"
 #include "offshore_gnc/safety/supervisor.h"
 #include "offshore_gnc/sim/contact.h"
@@ -62,6 +63,7 @@ struct UsvStackConfig {
   navigation::GpsNavigatorConfig navigation;  // config/usv.yaml
   sim::HullFootprint hull;            // config/usv.yaml: the outline that judges contact
   perception::LidarConfig lidar;      // config/perception/lidar_usv.yaml
+  perception::TrackerParams tracker;  // its tracker/...: the LidarTargets nodelet's tracks, which guidance takes
   double pose_timeout = 0.1;          // tf_timeout: a frame waits this long for the pose at its stamp [s]
   guidance::GuidanceParams guidance;  // config/guidance/usv.yaml
   control::ControlLoopParams control; // config/control/usv.yaml
@@ -97,6 +99,7 @@ class UsvStack {
   const guidance::GuidanceOutput* guidanceStep() const { return guided_ ? &last_ : nullptr; }
   const guidance::GuidanceOutput& lastGuidance() const { return last_; }  // the latest guidance step's
   const std::vector<guidance::SbbObstacle>& obstacles() const { return obstacles_; }
+  const perception::TargetTracker& tracker() const { return tracker_; }
   const sim::UsvSimulation& simulation() const { return sim_; }
   const control::ActuatorCommand& command() const { return command_; }  // the last control step's
   const control::ControlLoop& control() const { return control_; }
@@ -114,6 +117,7 @@ class UsvStack {
   navigation::GpsNavigator nav_;
   navigation::PoseHistory poses_;
   perception::LidarTargetExtractor lidar_;
+  perception::TargetTracker tracker_;
   guidance::GuidancePipeline guidance_;
   control::ControlLoop control_;
   mission::UsvMission mission_;

@@ -100,6 +100,9 @@ class LosGuidance {
   // passed), not on final_radius, and the path's legs lead to it.
   void setFinalRunBlocked(bool blocked) { final_run_blocked_ = blocked; }
 
+  // Hold the integral term (the pipeline's alteration for traffic: the cross-track it makes is no current's).
+  void holdIntegral(bool hold) { hold_integral_ = hold; }
+
   const Counters& counters() const { return counters_; }
   std::size_t activeLeg() const { return leg_; }
 
@@ -116,6 +119,7 @@ class LosGuidance {
   Eigen::Vector2d crab_ned_ = Eigen::Vector2d::Zero();  // b of crab_ned
   bool finished_ = false;
   bool final_run_blocked_ = false;
+  bool hold_integral_ = false;
   bool have_pose_ = false;
   std::string path_error_;
   Eigen::Vector3d last_pos_ = Eigen::Vector3d::Zero();

@@ -12,6 +12,7 @@
 #include "offshore_gnc/common/counters.h"
 #include "offshore_gnc/common/param_table.h"
 #include "offshore_gnc/common/reconfigure_form.h"
+#include "offshore_gnc/guidance/colregs.h"
 #include "offshore_gnc/guidance/los.h"
 #include "offshore_gnc/guidance/obstacle_memory.h"
 #include "offshore_gnc/guidance/sbb.h"
@@ -27,6 +28,7 @@ struct GuidanceParams {
   SbbParams sbb;
   bool sbb_enabled = true;       // plan around obstacles (the USV's LiDAR targets)
   ObstacleMemoryParams obstacles; // what is kept of the LiDAR's targets (sbb/obstacle_timeout, sbb/obstacle_memory...)
+  ColregsParams colregs;         // moving tracks: give way and stand on (rules 13-17)
   double replan_distance = 0.5;  // re-set the LOS path only when a planned waypoint moved more than this [m]
   double odom_timeout = 1.0;     // older navigation -> hold the last good position [s]
   double rate = 10.0;            // guidance steps per second [Hz]
@@ -46,6 +48,7 @@ struct GuidanceOutput {
   MotionReference reference;     // what control follows (referenceOf(los))
   bool planned_changed = false;  // plannedPath() differs from the last output's: publish it
   bool boxes_changed = false;    // a replan happened: publish the boxes (also when empty)
+  ColregsOutput colregs;         // the encounter with traffic, and the course it steers (los and reference carry it)
 };
 
 class GuidancePipeline {
@@ -61,6 +64,10 @@ class GuidancePipeline {
   // One obstacle frame's targets at time t (NED), placed with the last navigation state: kept with the ones seen
   // before that the sensor cannot see from there (ObstacleMemory). Non-finite geometry is dropped and counted.
   void setObstacles(const std::vector<SbbObstacle>& obstacles, double t);
+  // The LiDAR's tracks at time t (NED): the confirmed moving ones are met by the rules (ColregsAvoidance) and their
+  // targets are not boxed as standing obstacles; tentative and still ones are left to the SBB. Give them before
+  // the same frame's setObstacles (a later frame's obstacles are matched to them predicted to that time).
+  void setTracks(const std::vector<Contact>& tracks, double t) { colregs_.setTracks(tracks, t); }
   // Obstacles the mission knows of that the LiDAR may not see (the surfaced AUV the USV recovers: the simulated
   // LiDAR has no AUV, and a real one sees a low hull poorly), planned round and kept clear of like the seen ones
   // but kept until the next call (no obstacle_timeout). Empty: none. Non-finite geometry is dropped and counted.
@@ -83,9 +90,12 @@ class GuidancePipeline {
   int remembered() const { return seen_.remembered(); }
   const Counters& counters() const { return counters_; }            // stale_odom, bad_obstacles, ...
   const Counters& losCounters() const { return los_.counters(); }   // nan_pose, bad_path, ...
+  const Counters& colregsCounters() const { return colregs_.counters(); }  // bad_tracks, give_way, ...
 
  private:
   void replan(const VehicleState& s, double t);
+  // The encounters with the moving tracks (ColregsAvoidance): an alteration replaces the LOS heading.
+  void avoidTraffic(const VehicleState& s, double t, GuidanceOutput& out);
   // A hold point too close to an obstacle (sbb/hold_clearance) is refused: the nearest clear point is held instead,
   // and the status says so (counter hold_point_in_box).
   void keepHoldClear(double t, GuidanceOutput& out);
@@ -101,6 +111,8 @@ class GuidancePipeline {
   std::vector<Eigen::Vector3d> base_path_, planned_;
   std::vector<bool> planned_detour_;
   ObstacleMemory seen_;
+  ColregsAvoidance colregs_;
+  bool steering_ = false;  // the last step steered for traffic (the LOS integral is held)
   std::vector<SbbObstacle> known_;
   SbbPlan plan_;  // the last plan: its boxes' sides are kept while safe
   std::vector<SbbObstacle> planned_round_;

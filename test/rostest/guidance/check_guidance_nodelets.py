@@ -7,7 +7,8 @@ import rospy
 import rostest
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry, Path
-from offshore_gnc.msg import GuidanceStatus, JoystickCommand, SafetyBox, SafetyBoxArray, Target, TargetArray
+from offshore_gnc.msg import (GuidanceStatus, JoystickCommand, SafetyBox, SafetyBoxArray, Target, TargetArray, Track,
+                              TrackArray)
 from offshore_gnc.testing.poll import wait_until
 
 
@@ -46,6 +47,7 @@ class GuidanceNodelets(unittest.TestCase):
         cls.odom_pub = rospy.Publisher("/usv/odom", Odometry, queue_size=10)
         cls.path_pub = rospy.Publisher("/usv/guidance/path", Path, queue_size=1, latch=True)
         cls.obs_pub = rospy.Publisher("/usv/obstacles", TargetArray, queue_size=1)
+        cls.tracks_pub = rospy.Publisher("/usv/tracks", TrackArray, queue_size=1)
         cls.pose = (0.0, 3.0)
         cls.timer = rospy.Timer(rospy.Duration(0.05), lambda _: cls.odom_pub.publish(odom(*cls.pose)))
 
@@ -123,6 +125,39 @@ class GuidanceNodelets(unittest.TestCase):
         self.assertEqual(self.latest_status().reference_mode, GuidanceStatus.REFERENCE_HOLD)
         self.assertAlmostEqual(self.latest_status().reference_point.x, 0.0, places=3)
         self.assertAlmostEqual(self.latest_status().reference_point.y, 0.0, places=3)
+
+    def test_3_gives_way_to_a_track_from_starboard(self):
+        """A confirmed track 50 m off on our starboard bow, coming straight at us at 1.5 m/s: a crossing from
+        starboard, so guidance alters to starboard and says so; a NaN track beside it is counted, not used."""
+        type(self).pose = (5.0, 0.0)
+        self.path_pub.publish(path([(0, 0), (200, 0)]))
+        self.wait("path following", lambda: self.latest_status().mode == GuidanceStatus.MODE_FOLLOW_PATH)
+
+        def tracks():
+            a = TrackArray()
+            a.header.stamp = rospy.Time.now()
+            a.header.frame_id = "map_ned"
+            good, bad = Track(), Track()
+            good.id, bad.id = 7, 8
+            good.status = bad.status = Track.CONFIRMED
+            good.position.x, good.position.y = 45.0, 30.0
+            good.velocity.x, good.velocity.y = -1.2, -0.9
+            bad.position.x, bad.position.y = 60.0, -10.0
+            bad.velocity.x, bad.velocity.y = float("nan"), 1.0
+            for t in (good, bad):
+                t.header = a.header
+                t.covariance = [0.01 if i % 5 == 0 else 0.0 for i in range(16)]
+                t.length, t.width = 8.0, 3.0
+            a.tracks = [good, bad]
+            return a
+        self.wait("an encounter", lambda: (self.tracks_pub.publish(tracks()) or True) and
+                  self.latest_status().encounter != GuidanceStatus.ENCOUNTER_NONE)
+        s = self.latest_status()
+        self.assertEqual(s.encounter, GuidanceStatus.ENCOUNTER_CROSSING_GIVE_WAY)
+        self.assertEqual(s.encounter_contact, 7)
+        self.assertEqual(s.encounter_action, GuidanceStatus.ACTION_STARBOARD)
+        self.assertGreater(s.desired_heading, math.radians(30.0))  # the leg is north: a large turn to starboard
+        self.assertIn("crossing from starboard", s.status_text)
 
 
 if __name__ == "__main__":
