@@ -17,8 +17,6 @@ namespace closed_loop {
 
 int stepsPer(double rate_hz, double dt) { return std::max(1, static_cast<int>(std::lround(1.0 / (rate_hz * dt)))); }
 
-namespace {
-
 perception::CloudView viewOf(const sim::PackedCloud& c) {
   using P = sim::PackedCloud;
   perception::CloudView v;
@@ -35,6 +33,8 @@ perception::CloudView viewOf(const sim::PackedCloud& c) {
   v.ring = {true, P::kRing, static_cast<std::uint8_t>(perception::FieldType::UInt16), 1};
   return v;
 }
+
+namespace {
 
 perception::SonarBeamView viewOf(const sim::SonarBeamReading& b) {
   perception::SonarBeamView v;

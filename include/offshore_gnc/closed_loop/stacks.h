@@ -39,6 +39,9 @@ namespace closed_loop {
 // Steps of the simulation between two runs of a component at `rate_hz` (at least one).
 int stepsPer(double rate_hz, double dt);
 
+// The simulator's LiDAR frame as the LiDAR targets extraction reads it (the layout the UsvSim nodelet publishes).
+perception::CloudView viewOf(const sim::PackedCloud& c);
+
 // One vehicle's supervisor as its nodelet runs it: fed by the stack, updated at its rate, its decision handed to
 // control (as the Control nodelet takes the SafetyState), every transition kept.
 class StackSupervisor {

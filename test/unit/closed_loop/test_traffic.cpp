@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "offshore_gnc/closed_loop/stacks.h"
 #include "offshore_gnc/common/angles.h"
 #include "offshore_gnc/perception/lidar_targets.h"
 #include "offshore_gnc/perception/target_tracker.h"
@@ -15,25 +16,6 @@
 #include "offshore_gnc/sim/simulation.h"
 
 using namespace offshore_gnc;
-
-namespace {
-perception::CloudView viewOf(const sim::PackedCloud& c) {  // as the ROS-free stack reads the simulator's frames
-  using P = sim::PackedCloud;
-  perception::CloudView v;
-  v.data = c.data.data();
-  v.size = c.data.size();
-  v.width = c.width;
-  v.height = c.height;
-  v.point_step = P::kPointStep;
-  v.row_step = c.width * P::kPointStep;
-  const auto f32 = static_cast<std::uint8_t>(perception::FieldType::Float32);
-  v.x = {true, P::kX, f32, 1};
-  v.y = {true, P::kY, f32, 1};
-  v.z = {true, P::kZ, f32, 1};
-  v.ring = {true, P::kRing, static_cast<std::uint8_t>(perception::FieldType::UInt16), 1};
-  return v;
-}
-}  // namespace
 
 TEST(Traffic, ACrossingVesselThroughTheSimulatedLidarIsTrackedAtItsVelocity) {
   // A calm lake, the USV at rest; an 8 x 3 m boat 25 m ahead crossing from port to starboard at 2 m/s.
@@ -57,7 +39,7 @@ obstacles:
     if (!usv.step().lidar) continue;
     const sim::LidarScan& scan = usv.scan();
     sim::packCloud(scan, cloud);
-    const perception::LidarResult r = ex.extract(viewOf(cloud), perception::levelling(scan.roll, -scan.pitch));
+    const perception::LidarResult r = ex.extract(closed_loop::viewOf(cloud), perception::levelling(scan.roll, -scan.pitch));
     ASSERT_EQ(r.error, perception::CloudError::None) << r.message;
     const VehicleState& s = usv.state();  // the true pose: what is measured here is the tracker, not the navigation
     const Eigen::Isometry3d body = Eigen::Translation3d(s.position) * Eigen::AngleAxisd(s.yaw, Eigen::Vector3d::UnitZ());
